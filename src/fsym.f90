@@ -1,0 +1,20 @@
+!> forward-symplectic: fourth-order forward and non-forward symplectic integrators for
+!> classical dynamics (S. A. Chin). The umbrella module: `use fsym` gives the public API.
+module fsym
+    use fsym_kinds, only: wp, ik
+    use fsym_status
+    use fsym_scheme
+    use fsym_force
+    use fsym_stepper
+    use fsym_integrator
+    use fsym_rkn
+    use fsym_methods
+    use fsym_kepler
+    use fsym_models
+    use fsym_trace
+    use fsym_analysis
+    implicit none
+    public
+
+    character(len=*), parameter :: FSYM_VERSION = '0.1.0'  !! library version
+end module fsym

@@ -1,0 +1,95 @@
+!> The force model a user supplies, and the recorder of force-evaluation points.
+!>
+!> State convention: positions `q(d,n)` and velocities `v(d,n)`, d dimensions, n particles.
+!> A model returns accelerations `a(q)` (required), and optionally the gradient term
+!> g_j = (1/m_j) d/dq_j sum_i m_i |a_i|^2 (for unit masses the paper's grad |F|^2) and the
+!> potential energy. User data travels by extending `force_model_t`.
+module fsym_force
+    use fsym_kinds, only: wp, ik
+    implicit none
+    private
+
+    integer, parameter, public :: EVAL_FORCE = 1         !! a force evaluation at the state
+    integer, parameter, public :: EVAL_GRADIENT = 2      !! a gradient-term evaluation
+    integer, parameter, public :: EVAL_EXTRAPOLATED = 3  !! a force at the extrapolated point
+
+    !> A force model: accelerations, and optionally the gradient term and the potential.
+    type, abstract, public :: force_model_t
+    contains
+        procedure(acceleration_iface), deferred :: acceleration
+        procedure :: gradient => force_no_gradient
+        procedure :: has_gradient => force_has_no_gradient
+        procedure :: potential => force_no_potential
+        procedure :: has_potential => force_has_no_potential
+    end type force_model_t
+
+    abstract interface
+        !> Accelerations a(:,j) of every particle j at positions q. Set `stat` non-zero to
+        !> report a failure (it enters as zero); the step is then undone.
+        subroutine acceleration_iface(self, q, a, stat)
+            import :: force_model_t, wp
+            implicit none
+            class(force_model_t), intent(inout) :: self  !! the model (may keep counters)
+            real(wp), intent(in) :: q(:, :)               !! positions (d, n)
+            real(wp), intent(out) :: a(:, :)              !! accelerations (d, n)
+            integer, intent(inout) :: stat                !! 0 on entry; non-zero = failure
+        end subroutine acceleration_iface
+    end interface
+
+    !> Receives every force-evaluation position while a stepper runs (optional argument of
+    !> `step`/`run`); it must not allocate if it is to keep the step allocation-free.
+    type, abstract, public :: recorder_t
+    contains
+        procedure(record_iface), deferred :: record
+    end type recorder_t
+
+    abstract interface
+        !> One evaluation: step number, stage of the scheme, kind (`EVAL_*`), position.
+        subroutine record_iface(self, step, stage, kind, q)
+            import :: recorder_t, wp, ik
+            implicit none
+            class(recorder_t), intent(inout) :: self  !! the recorder
+            integer(ik), intent(in) :: step           !! step number (1 = first step taken)
+            integer, intent(in) :: stage              !! stage index within the scheme
+            integer, intent(in) :: kind               !! `EVAL_FORCE`, `EVAL_GRADIENT`, ...
+            real(wp), intent(in) :: q(:, :)           !! where the evaluation happened
+        end subroutine record_iface
+    end interface
+
+contains
+
+    !> Default gradient term: not provided (sets `stat` = 1). Override it together with
+    !> `has_gradient`.
+    subroutine force_no_gradient(self, q, a, g, stat)
+        class(force_model_t), intent(inout) :: self  !! the model
+        real(wp), intent(in) :: q(:, :)               !! positions (d, n)
+        real(wp), intent(in) :: a(:, :)               !! accelerations at q, already computed
+        real(wp), intent(out) :: g(:, :)              !! gradient term (d, n)
+        integer, intent(inout) :: stat                !! 0 on entry; non-zero = failure
+        g = 0.0_wp
+        stat = 1
+    end subroutine force_no_gradient
+
+    !> Whether `gradient` is provided (default: no).
+    logical function force_has_no_gradient(self)
+        class(force_model_t), intent(in) :: self  !! the model
+        force_has_no_gradient = .false.
+    end function force_has_no_gradient
+
+    !> Default potential: not provided (returns 0 and sets `stat` = 1).
+    subroutine force_no_potential(self, q, epot, stat)
+        class(force_model_t), intent(inout) :: self  !! the model
+        real(wp), intent(in) :: q(:, :)               !! positions (d, n)
+        real(wp), intent(out) :: epot                 !! total potential energy
+        integer, intent(inout) :: stat                !! 0 on entry; non-zero = failure
+        epot = 0.0_wp
+        stat = 1
+    end subroutine force_no_potential
+
+    !> Whether `potential` is provided (default: no).
+    logical function force_has_no_potential(self)
+        class(force_model_t), intent(in) :: self  !! the model
+        force_has_no_potential = .false.
+    end function force_has_no_potential
+
+end module fsym_force

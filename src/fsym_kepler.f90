@@ -1,0 +1,257 @@
+!> Kepler problem in any dimension, H = |v|^2/2 - mu/|q|: acceleration, gradient term,
+!> potential, energy, angular momentum, Laplace-Runge-Lenz vector, orbital elements and
+!> period, the exact solution at time t (Kepler's equation) and the benchmark orbit of the
+!> paper. Scalar physics is pure; `kepler_model_t` is the force model for `n` independent
+!> bodies about a fixed centre (columns of q).
+module fsym_kepler
+    use fsym_kinds, only: wp
+    use fsym_status
+    use fsym_force, only: force_model_t
+    implicit none
+    private
+
+    real(wp), parameter, public :: FSYM_PI = 3.14159265358979323846264338327950288_wp  !! pi
+
+    !> Kepler force model: each column of q is a body attracted by mu at the origin.
+    type, extends(force_model_t), public :: kepler_model_t
+        real(wp) :: mu = 1.0_wp   !! gravitational parameter G M
+    contains
+        procedure :: acceleration => kepler_model_acceleration
+        procedure :: gradient => kepler_model_gradient
+        procedure :: has_gradient => kepler_model_has_gradient
+        procedure :: potential => kepler_model_potential
+        procedure :: has_potential => kepler_model_has_potential
+    end type kepler_model_t
+
+    public :: kepler_acceleration, kepler_gradient, kepler_potential, kepler_energy
+    public :: kepler_lrl, kepler_angular_momentum_2d, kepler_angular_momentum_sq
+    public :: kepler_elements, kepler_period, kepler_exact, kepler_paper_orbit
+    public :: kepler_elliptic_orbit, kepler_lrl_angle
+
+contains
+
+    !> Acceleration a = -mu q/|q|^3 of one body, q of any dimension.
+    pure subroutine kepler_acceleration(q, a, mu)
+        real(wp), intent(in) :: q(:)              !! position
+        real(wp), intent(out) :: a(:)             !! acceleration
+        real(wp), intent(in), optional :: mu      !! G M (default 1)
+        real(wp) :: r2
+        r2 = sum(q**2)
+        a = -(opt_mu(mu) / (r2 * sqrt(r2))) * q
+    end subroutine kepler_acceleration
+
+    !> Gradient term grad |a|^2 = -4 mu^2 q/|q|^6 of one body.
+    pure subroutine kepler_gradient(q, g, mu)
+        real(wp), intent(in) :: q(:)              !! position
+        real(wp), intent(out) :: g(:)             !! grad |a|^2
+        real(wp), intent(in), optional :: mu      !! G M (default 1)
+        real(wp) :: r2
+        r2 = sum(q**2)
+        g = -(4.0_wp * opt_mu(mu)**2 / r2**3) * q
+    end subroutine kepler_gradient
+
+    !> Potential energy -mu/|q|.
+    pure real(wp) function kepler_potential(q, mu)
+        real(wp), intent(in) :: q(:)              !! position
+        real(wp), intent(in), optional :: mu      !! G M (default 1)
+        kepler_potential = -opt_mu(mu) / sqrt(sum(q**2))
+    end function kepler_potential
+
+    !> Energy |v|^2/2 - mu/|q|.
+    pure real(wp) function kepler_energy(q, v, mu)
+        real(wp), intent(in) :: q(:), v(:)        !! position, velocity
+        real(wp), intent(in), optional :: mu      !! G M (default 1)
+        kepler_energy = 0.5_wp * sum(v**2) + kepler_potential(q, mu)
+    end function kepler_energy
+
+    !> Planar angular momentum x v_y - y v_x (2D).
+    pure real(wp) function kepler_angular_momentum_2d(q, v)
+        real(wp), intent(in) :: q(2), v(2)        !! position, velocity
+        kepler_angular_momentum_2d = q(1) * v(2) - q(2) * v(1)
+    end function kepler_angular_momentum_2d
+
+    !> |L|^2 = |q|^2 |v|^2 - (q.v)^2, valid in any dimension.
+    pure real(wp) function kepler_angular_momentum_sq(q, v)
+        real(wp), intent(in) :: q(:), v(:)        !! position, velocity
+        kepler_angular_momentum_sq = sum(q**2) * sum(v**2) - dot_product(q, v)**2
+    end function kepler_angular_momentum_sq
+
+    !> Laplace-Runge-Lenz vector A = v x L - mu q/|q| = q (|v|^2 - mu/|q|) - v (q.v), any
+    !> dimension; it points to the pericentre and has length mu e.
+    pure subroutine kepler_lrl(q, v, lrl, mu)
+        real(wp), intent(in) :: q(:), v(:)        !! position, velocity
+        real(wp), intent(out) :: lrl(:)           !! the LRL vector
+        real(wp), intent(in), optional :: mu      !! G M (default 1)
+        lrl = q * (sum(v**2) - opt_mu(mu) / sqrt(sum(q**2))) - v * dot_product(q, v)
+    end subroutine kepler_lrl
+
+    !> Direction angle atan2(A_y, A_x) of the LRL vector of a planar (2D) state.
+    pure real(wp) function kepler_lrl_angle(q, v, mu)
+        real(wp), intent(in) :: q(2), v(2)        !! position, velocity
+        real(wp), intent(in), optional :: mu      !! G M (default 1)
+        real(wp) :: lrl(2)
+        call kepler_lrl(q, v, lrl, mu)
+        kepler_lrl_angle = atan2(lrl(2), lrl(1))
+    end function kepler_lrl_angle
+
+    !> Semi-major axis, eccentricity and period of a bound state.
+    pure subroutine kepler_elements(q, v, a, e, period, stat, mu)
+        real(wp), intent(in) :: q(:), v(:)        !! position, velocity
+        real(wp), intent(out) :: a                !! semi-major axis
+        real(wp), intent(out) :: e                !! eccentricity
+        real(wp), intent(out) :: period           !! orbital period
+        integer, intent(out) :: stat              !! FSYM_ERR_NOT_ELLIPTIC unless bound
+        real(wp), intent(in), optional :: mu      !! G M (default 1)
+        real(wp) :: en, m, lrl(size(q))
+        m = opt_mu(mu)
+        en = kepler_energy(q, v, m)
+        a = 0.0_wp; e = 0.0_wp; period = 0.0_wp
+        if (.not. (en < 0.0_wp) .or. sum(q**2) == 0.0_wp) then
+            stat = FSYM_ERR_NOT_ELLIPTIC; return
+        end if
+        a = -m / (2.0_wp * en)
+        call kepler_lrl(q, v, lrl, m)
+        e = sqrt(sum(lrl**2)) / m
+        period = 2.0_wp * FSYM_PI * sqrt(a**3 / m)
+        stat = FSYM_SUCCESS
+    end subroutine kepler_elements
+
+    !> Period 2 pi sqrt(a^3/mu) of a bound state (0 if unbound).
+    pure real(wp) function kepler_period(q, v, mu)
+        real(wp), intent(in) :: q(:), v(:)        !! position, velocity
+        real(wp), intent(in), optional :: mu      !! G M (default 1)
+        real(wp) :: a, e
+        integer :: st
+        call kepler_elements(q, v, a, e, kepler_period, st, mu)
+    end function kepler_period
+
+    !> Exact state at time t of the bound orbit through (q0, v0), any dimension, by Kepler's
+    !> equation (Newton iteration) and the f and g functions.
+    pure subroutine kepler_exact(q0, v0, t, q, v, stat, mu)
+        real(wp), intent(in) :: q0(:), v0(:)      !! state at time 0
+        real(wp), intent(in) :: t                 !! time
+        real(wp), intent(out) :: q(:), v(:)       !! state at time t
+        integer, intent(out) :: stat              !! FSYM_SUCCESS, NOT_ELLIPTIC, NO_CONVERGENCE
+        real(wp), intent(in), optional :: mu      !! G M (default 1)
+        real(wp) :: m, a, e, period, r0, nmean, ecosE0, esinE0, E0, M0, Mt, EE, dE, f, g
+        real(wp) :: fdot, gdot, r, tred, dEk
+        integer :: it
+        m = opt_mu(mu)
+        q = q0; v = v0
+        call kepler_elements(q0, v0, a, e, period, stat, m)
+        if (stat /= FSYM_SUCCESS) return
+        r0 = sqrt(sum(q0**2))
+        nmean = sqrt(m / a**3)
+        ecosE0 = 1.0_wp - r0 / a
+        esinE0 = dot_product(q0, v0) / sqrt(m * a)
+        E0 = atan2(esinE0, ecosE0)
+        M0 = E0 - esinE0
+        tred = t - period * real(floor(t / period), wp)       ! same state one period later
+        Mt = M0 + nmean * tred
+        ! Newton on E - e sin E = Mt, started at a bracket-safe guess
+        EE = Mt + 0.85_wp * e * sign(1.0_wp, sin(Mt))
+        if (e < 0.8_wp) EE = Mt
+        stat = FSYM_ERR_NO_CONVERGENCE
+        do it = 1, 100
+            dEk = (EE - e * sin(EE) - Mt) / (1.0_wp - e * cos(EE))
+            EE = EE - dEk
+            if (abs(dEk) <= 4.0_wp * epsilon(1.0_wp) * max(1.0_wp, abs(EE))) then
+                stat = FSYM_SUCCESS; exit
+            end if
+        end do
+        if (stat /= FSYM_SUCCESS) return
+        dE = EE - E0
+        f = 1.0_wp - (a / r0) * (1.0_wp - cos(dE))
+        g = tred - (dE - sin(dE)) / nmean
+        r = a * (1.0_wp - e * cos(EE))
+        fdot = -sqrt(m * a) * sin(dE) / (r * r0)
+        gdot = 1.0_wp - (a / r) * (1.0_wp - cos(dE))
+        q = f * q0 + g * v0
+        v = fdot * q0 + gdot * v0
+    end subroutine kepler_exact
+
+    !> The paper's benchmark: q = (10, 0), v = (0, 0.1), mu = 1 (e = 0.9, E0 = -0.095,
+    !> period 2000 pi/19^(3/2)).
+    pure subroutine kepler_paper_orbit(q, v, period)
+        real(wp), intent(out) :: q(2), v(2)       !! initial state
+        real(wp), intent(out), optional :: period !! its period
+        q = [10.0_wp, 0.0_wp]
+        v = [0.0_wp, 0.1_wp]
+        if (present(period)) period = 2000.0_wp * FSYM_PI / 19.0_wp**1.5_wp
+    end subroutine kepler_paper_orbit
+
+    !> A planar orbit of eccentricity e and semi-major axis 1 (mu = 1) started at pericentre
+    !> on the x axis: q = (1-e, 0), v = (0, sqrt((1+e)/(1-e))) (Hairer-Lubich-Wanner).
+    pure subroutine kepler_elliptic_orbit(e, q, v, period)
+        real(wp), intent(in) :: e                 !! eccentricity, 0 <= e < 1
+        real(wp), intent(out) :: q(2), v(2)       !! initial state
+        real(wp), intent(out), optional :: period !! its period (2 pi)
+        q = [1.0_wp - e, 0.0_wp]
+        v = [0.0_wp, sqrt((1.0_wp + e) / (1.0_wp - e))]
+        if (present(period)) period = 2.0_wp * FSYM_PI
+    end subroutine kepler_elliptic_orbit
+
+    pure real(wp) function opt_mu(mu)
+        real(wp), intent(in), optional :: mu
+        opt_mu = 1.0_wp
+        if (present(mu)) opt_mu = mu
+    end function opt_mu
+
+    ! ---------------------------------------------------------------- force model bindings
+
+    !> Accelerations of every column of q.
+    subroutine kepler_model_acceleration(self, q, a, stat)
+        class(kepler_model_t), intent(inout) :: self  !! the model
+        real(wp), intent(in) :: q(:, :)                !! positions (d, n)
+        real(wp), intent(out) :: a(:, :)               !! accelerations (d, n)
+        integer, intent(inout) :: stat                 !! unchanged: never fails itself
+        integer :: j
+        real(wp) :: r2, s
+        do j = 1, size(q, 2)
+            r2 = sum(q(:, j)**2)
+            s = -self%mu / (r2 * sqrt(r2))
+            a(:, j) = s * q(:, j)
+        end do
+    end subroutine kepler_model_acceleration
+
+    !> Gradient term of every column: -4 mu^2 q/|q|^6.
+    subroutine kepler_model_gradient(self, q, a, g, stat)
+        class(kepler_model_t), intent(inout) :: self  !! the model
+        real(wp), intent(in) :: q(:, :)                !! positions (d, n)
+        real(wp), intent(in) :: a(:, :)                !! accelerations at q (used: g = 4 a/r^3)
+        real(wp), intent(out) :: g(:, :)               !! gradient term (d, n)
+        integer, intent(inout) :: stat                 !! unchanged: never fails itself
+        integer :: j
+        real(wp) :: r2
+        do j = 1, size(q, 2)
+            r2 = sum(q(:, j)**2)
+            g(:, j) = (4.0_wp * self%mu / (r2 * sqrt(r2))) * a(:, j)
+        end do
+    end subroutine kepler_model_gradient
+
+    !> The Kepler model provides the gradient term.
+    logical function kepler_model_has_gradient(self)
+        class(kepler_model_t), intent(in) :: self  !! the model
+        kepler_model_has_gradient = .true.
+    end function kepler_model_has_gradient
+
+    !> Total potential energy of all columns.
+    subroutine kepler_model_potential(self, q, epot, stat)
+        class(kepler_model_t), intent(inout) :: self  !! the model
+        real(wp), intent(in) :: q(:, :)                !! positions (d, n)
+        real(wp), intent(out) :: epot                  !! sum of -mu/|q_j|
+        integer, intent(inout) :: stat                 !! unchanged: never fails itself
+        integer :: j
+        epot = 0.0_wp
+        do j = 1, size(q, 2)
+            epot = epot + kepler_potential(q(:, j), self%mu)
+        end do
+    end subroutine kepler_model_potential
+
+    !> The Kepler model provides its potential.
+    logical function kepler_model_has_potential(self)
+        class(kepler_model_t), intent(in) :: self  !! the model
+        kepler_model_has_potential = .true.
+    end function kepler_model_has_potential
+
+end module fsym_kepler

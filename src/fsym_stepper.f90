@@ -1,0 +1,205 @@
+!> What every time stepper of the library shares: the interface of `step` and `run`, the
+!> clock (time as t0 + k h, never a running sum), and the evaluation counters. The splitting
+!> integrator and the Runge-Kutta-Nystrom comparator extend it.
+module fsym_stepper
+    use fsym_kinds, only: wp, ik
+    use fsym_status
+    use fsym_force, only: force_model_t, recorder_t
+    implicit none
+    private
+
+    !> A time stepper for q' = v, v' = a(q) on arrays q(d,n), v(d,n).
+    type, abstract, public :: stepper_t
+        private
+        character(len=:), allocatable :: label
+        integer :: d = 0, n = 0
+        logical :: splitting = .false., forward = .false., symplectic = .false.
+        integer :: nf_step = 0, ng_step = 0
+        integer(ik) :: nsteps = 0, nforce = 0, ngrad = 0
+        integer(ik) :: k_since = 0           ! steps since the step size last changed
+        real(wp) :: t_base = 0.0_wp          ! time when the step size last changed
+        real(wp) :: h_now = 0.0_wp           ! current step size
+    contains
+        procedure(step_iface), deferred :: step
+        procedure :: run => stepper_run
+        procedure :: time => stepper_time
+        procedure :: set_time => stepper_set_time
+        procedure :: steps => stepper_steps
+        procedure :: force_evaluations => stepper_force_evaluations
+        procedure :: gradient_evaluations => stepper_gradient_evaluations
+        procedure :: name => stepper_name
+        procedure :: is_splitting => stepper_is_splitting
+        procedure :: is_forward => stepper_is_forward
+        procedure :: is_symplectic => stepper_is_symplectic
+        procedure :: forces_per_step => stepper_forces_per_step
+        procedure :: gradients_per_step => stepper_gradients_per_step
+        procedure :: dims => stepper_dims
+        procedure :: describe_stepper
+        procedure :: count_step
+        procedure :: counters
+    end type stepper_t
+
+    abstract interface
+        !> Advance (q, v) by one step h. On failure `stat` is non-zero, `errmsg` says why, and
+        !> q and v are exactly as they were on entry; the stepper stays usable.
+        subroutine step_iface(self, model, q, v, h, stat, errmsg, recorder)
+            import :: stepper_t, force_model_t, recorder_t, wp
+            implicit none
+            class(stepper_t), intent(inout) :: self               !! the stepper
+            class(force_model_t), intent(inout) :: model          !! force model
+            real(wp), intent(inout), contiguous :: q(:, :)        !! positions (d, n)
+            real(wp), intent(inout), contiguous :: v(:, :)        !! velocities (d, n)
+            real(wp), intent(in) :: h                             !! step (may be negative)
+            integer, intent(out), optional :: stat                !! status code
+            character(len=*), intent(inout), optional :: errmsg   !! message on error
+            class(recorder_t), intent(inout), optional :: recorder  !! force-point recorder
+        end subroutine step_iface
+    end interface
+
+contains
+
+    !> Take `nsteps` steps of size h; stops at the first failing step, leaving the state of the
+    !> last good step (check `stat`; `steps()` tells how far it got).
+    subroutine stepper_run(self, model, q, v, h, nsteps, stat, errmsg, recorder)
+        class(stepper_t), intent(inout) :: self               !! the stepper
+        class(force_model_t), intent(inout) :: model          !! force model
+        real(wp), intent(inout), contiguous :: q(:, :)        !! positions (d, n)
+        real(wp), intent(inout), contiguous :: v(:, :)        !! velocities (d, n)
+        real(wp), intent(in) :: h                             !! step
+        integer(ik), intent(in) :: nsteps                     !! number of steps
+        integer, intent(out), optional :: stat                !! status code
+        character(len=*), intent(inout), optional :: errmsg   !! message on error
+        class(recorder_t), intent(inout), optional :: recorder  !! force-point recorder
+        integer(ik) :: k
+        integer :: st
+        character(len=512) :: msg
+        st = FSYM_SUCCESS
+        do k = 1, nsteps
+            call self%step(model, q, v, h, st, msg, recorder)
+            if (st /= FSYM_SUCCESS) exit
+        end do
+        call fsym_pass(st, msg, stat, errmsg)
+    end subroutine stepper_run
+
+    !> Current time t_base + k h.
+    pure real(wp) function stepper_time(self)
+        class(stepper_t), intent(in) :: self  !! the stepper
+        stepper_time = self%t_base + real(self%k_since, wp) * self%h_now
+    end function stepper_time
+
+    !> Set the clock (e.g. to t0 before a run).
+    pure subroutine stepper_set_time(self, t)
+        class(stepper_t), intent(inout) :: self  !! the stepper
+        real(wp), intent(in) :: t                !! new time
+        self%t_base = t
+        self%k_since = 0
+    end subroutine stepper_set_time
+
+    !> Steps completed since init.
+    pure integer(ik) function stepper_steps(self)
+        class(stepper_t), intent(in) :: self  !! the stepper
+        stepper_steps = self%nsteps
+    end function stepper_steps
+
+    !> Force evaluations since init (first-same-as-last reuse not counted).
+    pure integer(ik) function stepper_force_evaluations(self)
+        class(stepper_t), intent(in) :: self  !! the stepper
+        stepper_force_evaluations = self%nforce
+    end function stepper_force_evaluations
+
+    !> Gradient-term evaluations since init.
+    pure integer(ik) function stepper_gradient_evaluations(self)
+        class(stepper_t), intent(in) :: self  !! the stepper
+        stepper_gradient_evaluations = self%ngrad
+    end function stepper_gradient_evaluations
+
+    !> Method label.
+    pure function stepper_name(self) result(name)
+        class(stepper_t), intent(in) :: self  !! the stepper
+        character(len=:), allocatable :: name
+        if (allocated(self%label)) then
+            name = self%label
+        else
+            name = ''
+        end if
+    end function stepper_name
+
+    !> True for splitting methods; false for RKN.
+    pure logical function stepper_is_splitting(self)
+        class(stepper_t), intent(in) :: self  !! the stepper
+        stepper_is_splitting = self%splitting
+    end function stepper_is_splitting
+
+    !> True when every drift and kick weight is non-negative (a forward method).
+    pure logical function stepper_is_forward(self)
+        class(stepper_t), intent(in) :: self  !! the stepper
+        stepper_is_forward = self%forward
+    end function stepper_is_forward
+
+    !> True when the step map is symplectic for every force.
+    pure logical function stepper_is_symplectic(self)
+        class(stepper_t), intent(in) :: self  !! the stepper
+        stepper_is_symplectic = self%symplectic
+    end function stepper_is_symplectic
+
+    !> Force evaluations per step in steady state.
+    pure integer function stepper_forces_per_step(self)
+        class(stepper_t), intent(in) :: self  !! the stepper
+        stepper_forces_per_step = self%nf_step
+    end function stepper_forces_per_step
+
+    !> Gradient evaluations per step.
+    pure integer function stepper_gradients_per_step(self)
+        class(stepper_t), intent(in) :: self  !! the stepper
+        stepper_gradients_per_step = self%ng_step
+    end function stepper_gradients_per_step
+
+    !> Dimensions d and particles n the stepper was set up for.
+    pure subroutine stepper_dims(self, d, n)
+        class(stepper_t), intent(in) :: self  !! the stepper
+        integer, intent(out) :: d, n          !! dimensions, particles
+        d = self%d; n = self%n
+    end subroutine stepper_dims
+
+    !> For extensions: set the description and shape, reset clock and counters.
+    subroutine describe_stepper(self, label, d, n, splitting, forward, symplectic, nf, ng, t0)
+        class(stepper_t), intent(inout) :: self     !! the stepper
+        character(len=*), intent(in) :: label       !! method label
+        integer, intent(in) :: d, n                 !! dimensions, particles
+        logical, intent(in) :: splitting, forward, symplectic  !! properties
+        integer, intent(in) :: nf, ng               !! evaluations per step
+        real(wp), intent(in) :: t0                  !! start time
+        self%label = label
+        self%d = d; self%n = n
+        self%splitting = splitting; self%forward = forward; self%symplectic = symplectic
+        self%nf_step = nf; self%ng_step = ng
+        self%nsteps = 0; self%nforce = 0; self%ngrad = 0
+        self%t_base = t0; self%k_since = 0; self%h_now = 0.0_wp
+    end subroutine describe_stepper
+
+    !> For extensions: one step of size h completed.
+    pure subroutine count_step(self, h)
+        class(stepper_t), intent(inout) :: self  !! the stepper
+        real(wp), intent(in) :: h                !! its size
+        if (h /= self%h_now) then
+            self%t_base = self%time()
+            self%k_since = 0
+            self%h_now = h
+        end if
+        self%k_since = self%k_since + 1
+        self%nsteps = self%nsteps + 1
+    end subroutine count_step
+
+    !> For extensions: the evaluation counters, to be updated in place by the kernel.
+    subroutine counters(self, nf, ng, mode)
+        class(stepper_t), intent(inout) :: self  !! the stepper
+        integer(ik), intent(inout) :: nf, ng     !! local copies
+        integer, intent(in) :: mode              !! 0: read into nf, ng; 1: store them
+        if (mode == 0) then
+            nf = self%nforce; ng = self%ngrad
+        else
+            self%nforce = nf; self%ngrad = ng
+        end if
+    end subroutine counters
+
+end module fsym_stepper
