@@ -13,6 +13,7 @@ module fsym
     use fsym_models
     use fsym_trace
     use fsym_analysis
+    use fsym_diagnostics
     implicit none
     public
 
