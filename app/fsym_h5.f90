@@ -19,7 +19,7 @@ module fsym_h5
     implicit none
     private
 
-    public :: h5_file_t
+    public :: h5_file_t, fsym_rename_file
 
     integer, parameter :: MODE_CLOSED = 0, MODE_WRITE = 1, MODE_READ = 2
 
@@ -170,6 +170,21 @@ contains
     end function t_ik
 
     ! ---------------------------------------------------------------- files
+
+    !> Rename a file with the C library's `rename` (atomic on one file system); used to put
+    !> any finished output (e.g. a text report written under a temporary name) in place.
+    subroutine fsym_rename_file(from, to, stat, errmsg)
+        character(len=*), intent(in) :: from                  !! current name
+        character(len=*), intent(in) :: to                    !! new name
+        integer, intent(out), optional :: stat                !! status code
+        character(len=*), intent(inout), optional :: errmsg   !! message on error
+        if (c_rename(trim(from)//c_null_char, trim(to)//c_null_char) /= 0) then
+            call fsym_report(FSYM_ERR_IO, 'cannot rename '//trim(from)//' to '//trim(to), &
+                             stat, errmsg)
+        else if (present(stat)) then
+            stat = FSYM_SUCCESS
+        end if
+    end subroutine fsym_rename_file
 
     !> Create `path` for writing (under the temporary name `path//'.part'`).
     subroutine h5_create(self, path, stat, errmsg)

@@ -155,7 +155,7 @@ contains
         do it = 1, 100
             dEk = (EE - e * sin(EE) - Mt) / (1.0_wp - e * cos(EE))
             EE = EE - dEk
-            if (abs(dEk) <= 4.0_wp * epsilon(1.0_wp) * max(1.0_wp, abs(EE))) then
+            if (abs(dEk) <= 16.0_wp * epsilon(1.0_wp) * max(1.0_wp, abs(EE))) then
                 stat = FSYM_SUCCESS; exit
             end if
         end do
