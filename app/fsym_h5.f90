@@ -68,7 +68,7 @@ module fsym_h5
         end function c_remove
     end interface
 
-    logical, save :: lib_open = .false.
+    logical :: lib_open = .false.
 
 contains
 
@@ -828,8 +828,9 @@ contains
         call h5tset_size_f(tid, int(size(buf), size_t), ierr)
         if (.not. bad(ierr, 'string size', stat, errmsg)) then
             call h5tset_strpad_f(tid, H5T_STR_NULLPAD_F, ierr)
-            if (.not. bad(ierr, 'string padding', stat, errmsg)) &
+            if (.not. bad(ierr, 'string padding', stat, errmsg)) then
                 call set_attr_raw(self, path, name, tid, none, c_loc(buf), stat, errmsg)
+            end if
         end if
         if (ierr < 0) self%failed = .true.
         call release(tid)
@@ -951,8 +952,9 @@ contains
         character(len=512) :: msg
         value = 0.0_wp
         call open_attr(self, path, name, oid, aid, n, st, msg)
-        if (st == FSYM_SUCCESS .and. n /= 1) &
+        if (st == FSYM_SUCCESS .and. n /= 1) then
             call fsym_report(FSYM_ERR_IO, 'attribute '//trim(name)//' not scalar', st, msg)
+        end if
         call read_attr_close(oid, aid, t_real(), c_loc(value), name, st, msg)
         call fsym_pass(st, trim(msg), stat, errmsg)
     end subroutine ga_r0
@@ -971,8 +973,9 @@ contains
         character(len=512) :: msg
         value = 0
         call open_attr(self, path, name, oid, aid, n, st, msg)
-        if (st == FSYM_SUCCESS .and. n /= 1) &
+        if (st == FSYM_SUCCESS .and. n /= 1) then
             call fsym_report(FSYM_ERR_IO, 'attribute '//trim(name)//' not scalar', st, msg)
+        end if
         call read_attr_close(oid, aid, H5T_NATIVE_INTEGER, c_loc(value), name, st, msg)
         call fsym_pass(st, trim(msg), stat, errmsg)
     end subroutine ga_i0

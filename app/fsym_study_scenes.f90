@@ -29,11 +29,11 @@ module fsym_study_scenes
         real(wp) :: pend = 0.0_wp     ! precession coefficient at t = P
     end type summary_t
 
-    type(kepler_model_t), save :: kep
-    character(len=:), allocatable, save :: outdir, results_path
-    real(wp), save :: period, q0(2), v0(2)
-    integer, save :: st
-    character(len=512), save :: msg
+    type(kepler_model_t) :: kep
+    character(len=:), allocatable :: outdir, results_path
+    real(wp) :: period, q0(2), v0(2)
+    integer :: st
+    character(len=512) :: msg
 
 contains
 
@@ -547,7 +547,7 @@ contains
         character(len=32) :: buf
         if (abs(x) >= 1.0e-2_wp .and. abs(x) < 1.0e4_wp) then
             write (buf, '(f0.4)') x
-            if (buf(1:1) == '.') buf = '0'//buf
+            if (buf(1:1) == '.') buf = '0'//trim(buf)
             if (buf(1:2) == '-.') buf = '-0'//buf(2:)
         else
             write (buf, '(es10.3)') x
@@ -606,7 +606,8 @@ contains
         write (u, '(a)') '', 'A relative difference above about 0.05 means the '// &
             'coefficient is not yet a converged fingerprint at this eps (expected for T2, '// &
             'which is second order, and for the energy of RKN, which drifts).', '', &
-            '', 'Not converged to 5 % at this eps (relative difference eps vs eps/2 above 0.05): '// &
+            '', 'Not converged to 5 % at this eps (relative difference eps vs eps/2 '// &
+            'above 0.05): '// &
             unconverged()//'.', '', &
             '## The paper''s claims', '', &
             'Criterion: a claim "~k times" holds when the measured ratio lies within a '// &
@@ -677,10 +678,12 @@ contains
             integer :: j
             text = ''
             do j = 1, size(names)
-                if (fsym_relative_difference(r1(j)%emax, r2(j)%emax) > 0.05_wp) &
+                if (fsym_relative_difference(r1(j)%emax, r2(j)%emax) > 0.05_wp) then
                     text = text//' '//trim(names(j))//' (energy)'
-                if (fsym_relative_difference(r1(j)%pend, r2(j)%pend) > 0.05_wp) &
+                end if
+                if (fsym_relative_difference(r1(j)%pend, r2(j)%pend) > 0.05_wp) then
                     text = text//' '//trim(names(j))//' (precession)'
+                end if
             end do
             if (len(text) == 0) text = ' none'
         end function unconverged
