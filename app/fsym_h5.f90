@@ -313,8 +313,9 @@ contains
         if (not_open(self, MODE_WRITE, 'make_group '//trim(path), stat, errmsg)) return
         if (present(stat)) stat = FSYM_SUCCESS
         p = abspath(path)
-        do i = 2, len(p)
-            if (i < len(p) .and. p(i + 1:i + 1) /= '/') cycle
+        p = p//'/'    ! every prefix ending before a '/' is a group
+        do i = 2, len(p) - 1
+            if (p(i + 1:i + 1) /= '/' .or. p(i:i) == '/') cycle
             if (self%exists(p(1:i))) cycle
             call h5gcreate_f(self%id, p(1:i), gid, ierr)
             if (bad(ierr, 'cannot create group '//p(1:i), stat, errmsg)) then
@@ -356,6 +357,7 @@ contains
         integer :: ierr, st
         character(len=512) :: msg
         character(len=:), allocatable :: p
+        msg = ''
         sid = -1; did = -1; st = FSYM_SUCCESS
         if (not_open(self, MODE_WRITE, 'write '//trim(path), stat, errmsg)) return
         p = abspath(path)
@@ -389,6 +391,7 @@ contains
         integer :: ierr, st, r, rk
         character(len=512) :: msg
         character(len=:), allocatable :: p
+        msg = ''
         sid = -1; did = -1; pid = -1; msid = -1; st = FSYM_SUCCESS
         if (not_open(self, MODE_WRITE, 'append '//trim(path), stat, errmsg)) return
         p = abspath(path)
@@ -604,6 +607,7 @@ contains
         integer(hsize_t) :: n(1)
         integer :: st
         character(len=512) :: msg
+        msg = ''
         call open_dataset(self, path, 1, did, n, st, msg)
         if (st == FSYM_SUCCESS) then
             allocate (x(n(1)))
@@ -624,6 +628,7 @@ contains
         integer(hsize_t) :: n(2)
         integer :: st
         character(len=512) :: msg
+        msg = ''
         call open_dataset(self, path, 2, did, n, st, msg)
         if (st == FSYM_SUCCESS) then
             allocate (x(n(1), n(2)))
@@ -644,6 +649,7 @@ contains
         integer(hsize_t) :: n(3)
         integer :: st
         character(len=512) :: msg
+        msg = ''
         call open_dataset(self, path, 3, did, n, st, msg)
         if (st == FSYM_SUCCESS) then
             allocate (x(n(1), n(2), n(3)))
@@ -664,6 +670,7 @@ contains
         integer(hsize_t) :: n(1)
         integer :: st
         character(len=512) :: msg
+        msg = ''
         call open_dataset(self, path, 1, did, n, st, msg)
         if (st == FSYM_SUCCESS) then
             allocate (x(n(1)))
@@ -685,6 +692,7 @@ contains
         integer(hsize_t) :: n(1)
         integer :: st
         character(len=512) :: msg
+        msg = ''
         call open_dataset(self, path, 1, did, n, st, msg)
         if (st == FSYM_SUCCESS) then
             allocate (x(n(1)))
@@ -712,6 +720,7 @@ contains
         character(len=512) :: msg
         logical :: there
         character(len=:), allocatable :: what
+        msg = ''
         oid = -1; sid = -1; aid = -1; st = FSYM_SUCCESS
         if (not_open(self, MODE_WRITE, 'attribute '//trim(name), stat, errmsg)) return
         what = 'attribute '//trim(name)//' of '//abspath(path)
@@ -899,6 +908,7 @@ contains
         integer(size_t) :: sz
         integer :: st, ierr, i, k
         character(len=512) :: msg
+        msg = ''
         ftid = -1; tid = -1
         value = ''
         call open_attr(self, path, name, oid, aid, n, st, msg)
@@ -950,6 +960,7 @@ contains
         integer(hsize_t) :: n
         integer :: st
         character(len=512) :: msg
+        msg = ''
         value = 0.0_wp
         call open_attr(self, path, name, oid, aid, n, st, msg)
         if (st == FSYM_SUCCESS .and. n /= 1) then
@@ -971,6 +982,7 @@ contains
         integer(hsize_t) :: n
         integer :: st
         character(len=512) :: msg
+        msg = ''
         value = 0
         call open_attr(self, path, name, oid, aid, n, st, msg)
         if (st == FSYM_SUCCESS .and. n /= 1) then
@@ -992,6 +1004,7 @@ contains
         integer(hsize_t) :: n
         integer :: st
         character(len=512) :: msg
+        msg = ''
         call open_attr(self, path, name, oid, aid, n, st, msg)
         allocate (value(max(1_hsize_t, n)))
         call read_attr_close(oid, aid, t_real(), c_loc(value), name, st, msg)
@@ -1011,6 +1024,7 @@ contains
         integer(hsize_t) :: n
         integer :: st
         character(len=512) :: msg
+        msg = ''
         call open_attr(self, path, name, oid, aid, n, st, msg)
         allocate (value(max(1_hsize_t, n)))
         call read_attr_close(oid, aid, H5T_NATIVE_INTEGER, c_loc(value), name, st, msg)

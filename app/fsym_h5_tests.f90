@@ -66,6 +66,7 @@ contains
         real(wp) :: x
         integer :: i, k, st, ival
         character(len=256) :: msg
+        msg = ''
         do i = 1, size(r1)
             r1(i) = 1.0_wp / real(i, wp) - sqrt(real(i, wp)) * 1.0e-300_wp
         end do
@@ -174,6 +175,7 @@ contains
         type(h5_file_t) :: f
         integer :: k, st
         character(len=256) :: msg
+        msg = ''
         do k = 1, size(paths)
             msg = ''
             call f%create(trim(paths(k)), st, msg)
@@ -193,6 +195,7 @@ contains
         type(h5_file_t) :: f
         integer :: st
         character(len=256) :: msg
+        msg = ''
         call f%create(path, st, msg)
         call check(err, st == 0, 'create: '//trim(msg))
         call f%write('x', [1.0_wp, 2.0_wp], st, msg)
