@@ -61,7 +61,7 @@ contains
             '|---|---:|---:|---:|---:|---:|---:|---:|---:|'
         do km = 1, size(res%methods)
             do kh = 1, size(res%h)
-                write (row, '(a,a,a,f0.1,a,i0,3(a,es9.2),2(a,i0),a,f0.3,a)') '| ', &
+                write (row, '(a,a,a,f0.1,a,i0,3(a,es9.2),2(a,i0),a,f7.3,a)') '| ', &
                     trim(res%methods(km)), ' | ', res%h(kh), ' | ', nint(res%t_end / res%h(kh)), &
                     ' | ', res%err_phase(km, kh), ' | ', res%err_q(km, kh), ' | ', &
                     res%err_energy(km, kh), ' | ', res%nforce(km, kh), ' | ', res%ngrad(km, kh), &
