@@ -105,6 +105,7 @@ subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
     use fsym_kinds, only: wp, ik
     use fsym_kernel
     use fsym_legacy_work, only: legacy_ok
+    use fsym_legacy_api, only: fsym_legacy_accel, fsym_legacy_grad
     implicit none
     integer, intent(in) :: ND, N                !! dimensions, bodies
     real(wp), intent(inout) :: X(ND, N)         !! positions
@@ -115,24 +116,8 @@ subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
     real(wp), intent(inout) :: RW(LRW)          !! work array set up by FSYMIN
     integer, intent(inout) :: IW(LIW)           !! work array set up by FSYMIN
     integer, intent(out) :: INFO                !! status
-    interface
-        !> Accelerations A of the bodies at positions X.
-        subroutine ACCEL(ND, N, X, A)
-            import :: wp
-            implicit none
-            integer, intent(in) :: ND, N
-            real(wp), intent(in) :: X(ND, N)
-            real(wp), intent(out) :: A(ND, N)
-        end subroutine ACCEL
-        !> Gradient term G at positions X, given the accelerations A there.
-        subroutine GRAD(ND, N, X, A, G)
-            import :: wp
-            implicit none
-            integer, intent(in) :: ND, N
-            real(wp), intent(in) :: X(ND, N), A(ND, N)
-            real(wp), intent(out) :: G(ND, N)
-        end subroutine GRAD
-    end interface
+    procedure(fsym_legacy_accel) :: ACCEL       !! ACCEL(ND, N, X, A): accelerations at X
+    procedure(fsym_legacy_grad) :: GRAD         !! GRAD(ND, N, X, A, G): gradient term at X
     integer :: nop, nslot, ko, kc, kw, m, istep, req, ia, ig, iqe, iae
     integer(ik) :: nf, ng
     logical :: ok

@@ -6,6 +6,26 @@ module fsym_legacy_api
     private
 
     public :: FSYMID, FSYMWK, FSYMIN, FSYMST, FSYMRC, FSYMNF, FSYMMS, FSYMPK, FSYMUP
+    public :: fsym_legacy_accel, fsym_legacy_grad
+
+    abstract interface
+        !> The caller's acceleration routine: accelerations A of the bodies at positions X.
+        subroutine fsym_legacy_accel(ND, N, X, A)
+            import :: wp
+            implicit none
+            integer, intent(in) :: ND, N          !! dimensions, bodies
+            real(wp), intent(in) :: X(ND, N)      !! positions
+            real(wp), intent(out) :: A(ND, N)     !! accelerations
+        end subroutine fsym_legacy_accel
+        !> The caller's gradient-term routine: G at positions X, given the accelerations A.
+        subroutine fsym_legacy_grad(ND, N, X, A, G)
+            import :: wp
+            implicit none
+            integer, intent(in) :: ND, N                  !! dimensions, bodies
+            real(wp), intent(in) :: X(ND, N), A(ND, N)    !! positions, accelerations
+            real(wp), intent(out) :: G(ND, N)             !! gradient term
+        end subroutine fsym_legacy_grad
+    end interface
 
     interface
         !> Method id of a name (0 if unknown).
@@ -31,7 +51,7 @@ module fsym_legacy_api
         end subroutine FSYMIN
         !> NSTEP steps with the caller's acceleration (and gradient) routine.
         subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
-            import :: wp
+            import :: wp, fsym_legacy_accel, fsym_legacy_grad
             implicit none
             integer, intent(in) :: ND, N                  !! dimensions, bodies
             real(wp), intent(inout) :: X(ND, N), V(ND, N) !! state
@@ -40,22 +60,8 @@ module fsym_legacy_api
             real(wp), intent(inout) :: RW(LRW)            !! real work array
             integer, intent(inout) :: IW(LIW)             !! integer work array
             integer, intent(out) :: INFO                  !! status
-            interface
-                subroutine ACCEL(ND, N, X, A)
-                    import :: wp
-                    implicit none
-                    integer, intent(in) :: ND, N
-                    real(wp), intent(in) :: X(ND, N)
-                    real(wp), intent(out) :: A(ND, N)
-                end subroutine ACCEL
-                subroutine GRAD(ND, N, X, A, G)
-                    import :: wp
-                    implicit none
-                    integer, intent(in) :: ND, N
-                    real(wp), intent(in) :: X(ND, N), A(ND, N)
-                    real(wp), intent(out) :: G(ND, N)
-                end subroutine GRAD
-            end interface
+            procedure(fsym_legacy_accel) :: ACCEL     !! acceleration routine
+            procedure(fsym_legacy_grad) :: GRAD       !! gradient-term routine
         end subroutine FSYMST
         !> One step by reverse communication.
         subroutine FSYMRC(ND, N, X, V, H, RW, LRW, IW, LIW, IREQ, IPNT, INFO)

@@ -1,6 +1,6 @@
 !> Tests of the faces for existing codes: the F77-callable layer, reverse communication, the
 !> structure-of-arrays adapter and the C API (called in-process) must reproduce the modern
-!> `integrator_t` bit for bit on the outer solar system, and reject bad calls with a status.
+!> `integrator_t` bit for bit on a Sun-and-planets system, and reject bad calls with a status.
 module test_legacy
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_null_ptr, c_null_funptr, &
                                            c_funloc, c_loc, c_long_long, c_char, c_null_char, &
@@ -15,23 +15,30 @@ module test_legacy
 
     integer, parameter :: nb = 6, nsteps = 100
     real(wp), parameter :: gconst = 2.95912208286e-4_wp, hstep = 10.0_wp
-    ! Hairer, Lubich, Wanner, GNI Sec. I.2.4 (data/outer_solar_system.txt): masses and state
-    real(wp), parameter :: mass(nb) = [0.000954786104043_wp, 0.000285583733151_wp, &
-        0.0000437273164546_wp, 0.0000517759138449_wp, 7.692307692307693e-09_wp, 1.00000597682_wp]
-    real(wp), parameter :: x0(3, nb) = reshape([ &
-        -3.5023653_wp, -3.8169847_wp, -1.5507963_wp, 9.0755314_wp, -3.0458353_wp, -1.6483708_wp, &
-        8.3101420_wp, -16.2901086_wp, -7.2521278_wp, 11.4707666_wp, -25.7294829_wp, &
-        -10.8169456_wp, -15.5387357_wp, -25.2225594_wp, -3.1902382_wp, 0.0_wp, 0.0_wp, 0.0_wp], &
-        [3, nb])
-    real(wp), parameter :: v0(3, nb) = reshape([ &
-        0.00565429_wp, -0.00412490_wp, -0.00190589_wp, 0.00168318_wp, 0.00483525_wp, &
-        0.00192462_wp, 0.00354178_wp, 0.00137102_wp, 0.00055029_wp, 0.00288930_wp, &
-        0.00114527_wp, 0.00039677_wp, 0.00276725_wp, -0.00170702_wp, -0.00136504_wp, &
-        0.0_wp, 0.0_wp, 0.0_wp], [3, nb])
+    ! a Sun and five planets on near-circular, slightly inclined orbits (set by make_system)
+    real(wp), save :: mass(nb), x0(3, nb), v0(3, nb)
     character(len=4), parameter :: methods(6) = [character(len=4) :: 'FR', 'A', 'A''', 'C', &
                                                  'A6', 'BM']
 
 contains
+
+    !> Sun (mass 1, at rest at the origin) and planets k = 1..5 at radius 5 * 1.8**(k-1) AU
+    !> with circular speeds, in days and solar masses.
+    subroutine make_system()
+        integer :: k
+        real(wp) :: r, phi, z
+        mass(nb) = 1.0_wp
+        x0(:, nb) = 0.0_wp
+        v0(:, nb) = 0.0_wp
+        do k = 1, nb - 1
+            mass(k) = 1.0e-3_wp / k
+            r = 5.0_wp * 1.8_wp**(k - 1)
+            phi = 2.1_wp * k
+            z = 0.02_wp * r * sin(3.0_wp * k)
+            x0(:, k) = [r * cos(phi), r * sin(phi), z]
+            v0(:, k) = sqrt(gconst / r) * [-sin(phi), cos(phi), 0.01_wp * k]
+        end do
+    end subroutine make_system
 
     function collect_legacy() result(tests)
         type(test_t), allocatable :: tests(:)
@@ -101,6 +108,7 @@ contains
         integer, allocatable :: iw(:)
         integer(ik) :: nf, ng
         integer :: k, st, info, lnf, lng
+        call make_system()
         do k = 1, size(methods)
             call modern(trim(methods(k)), q, v, nf, ng, st)
             call check(err, st == 0, 'modern '//trim(methods(k)))
@@ -123,6 +131,7 @@ contains
         integer, allocatable :: iw(:)
         integer(ik) :: nf, ng
         integer :: k, st, info, step, ireq, ipnt(3), lnf, lng
+        call make_system()
         do k = 1, size(methods)
             call modern(trim(methods(k)), q, v, nf, ng, st)
             call setup(trim(methods(k)), rw, iw, st)
@@ -165,6 +174,7 @@ contains
         integer, allocatable :: iw(:)
         integer(ik) :: nf, ng
         integer :: st, info
+        call make_system()
         call FSYMUP(nb, x0, xh, yh, zh)
         call FSYMUP(nb, v0, vxh, vyh, vzh)
         call check(err, all(xh == x0(1, :)) .and. all(zh == x0(3, :)), 'unpack')
@@ -186,6 +196,7 @@ contains
         real(wp) :: x(3, nb), y(3, nb), rw(5000)
         integer :: iw(200), meth, lrw, liw, info, ireq, ipnt(3)
         character(len=60) :: msg
+        call make_system()
         call FSYMID('a prime', meth)
         call check(err, meth == 4, 'FSYMID(a prime) /= 4')
         call FSYMID('no such method', meth)
@@ -258,6 +269,7 @@ contains
         type(c_ptr) :: h
         integer :: k, st
         character(kind=c_char, len=8) :: name
+        call make_system()
         do k = 1, size(methods)
             call modern(trim(methods(k)), q, v, nf, ng, st)
             name = trim(methods(k))//c_null_char
