@@ -138,7 +138,7 @@ contains
         real(c_double), value :: h         !! step
         integer(c_int), value :: nstep     !! number of steps
         type(c_handle_t), pointer :: p
-        real(wp), pointer :: qf(:, :), vf(:, :)
+        real(wp), pointer, contiguous :: qf(:, :), vf(:, :)
         character(len=256) :: msg
         integer :: k, st
         if (.not. (c_associated(handle) .and. c_associated(q) .and. c_associated(v))) then

@@ -1,7 +1,10 @@
-!> Reference for the clients: the outer solar system through the modern API (`use fsym`,
-!> `nbody_model_t`, `integrator_t`), printed in the clients' format.
+!> Reference for the clients: the outer solar system through the modern API
+!> (`nbody_model_t`, `integrator_t`), printed in the clients' format. It uses the core modules
+!> by name rather than the umbrella `fsym`, so it needs only the core library.
 program modern_nbody
-    use fsym
+    use fsym_kinds, only: wp
+    use fsym_nbody, only: nbody_model_t
+    use fsym_integrator, only: integrator_t
     implicit none
     integer, parameter :: nb = 6
     real(wp), parameter :: mass(nb) = [0.000954786104043_wp, 0.000285583733151_wp, &
