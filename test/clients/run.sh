@@ -4,6 +4,7 @@
 #   - Makefile style: the F77 client with `gfortran ... -lfsym` alone (no HDF5, no LAPACK),
 #     the C client with `pkg-config --libs --static fsym`, the modern reference with `use fsym`;
 #   - CMake style: the same three through find_package(forward-symplectic);
+#   - fpm style: the same three against `fpm install` (when fpm is on PATH);
 # run them all and check that every client reproduces the modern API bit for bit.
 # Exits non-zero on any failure. Run from anywhere; FSYM_KEEP=1 keeps the temporary tree.
 set -euo pipefail
@@ -34,8 +35,21 @@ say "CMake consumer: find_package(forward-symplectic), target forward-symplectic
 quiet cmake -S "$here/cmake_consumer" -B "$tmp/consumer" -DCMAKE_PREFIX_PATH="$prefix"
 quiet cmake --build "$tmp/consumer" -j 2
 
+dirs=("$mk" "$tmp/consumer")
+if command -v fpm >/dev/null 2>&1; then
+    say "fpm install --prefix $tmp/fpm-prefix; clients linked with -lforward-symplectic"
+    fp=$tmp/fpm; mkdir -p "$fp"
+    (cd "$root" && quiet fpm install --prefix "$tmp/fpm-prefix")
+    gfortran -O2 -ffp-contract=off "$here/f77_nbody.f" -L"$tmp/fpm-prefix/lib" -lforward-symplectic -o "$fp/f77_nbody"
+    cc -O2 -ffp-contract=off -I"$root/include" "$here/c_nbody.c" -L"$tmp/fpm-prefix/lib" \
+        -lforward-symplectic -lgfortran -lm -o "$fp/c_nbody"
+    gfortran -O2 -ffp-contract=off -I"$tmp/fpm-prefix/include" "$here/modern_nbody.f90" \
+        -L"$tmp/fpm-prefix/lib" -lforward-symplectic -o "$fp/modern_nbody"
+    dirs+=("$fp")
+fi
+
 status=0
-for dir in "$mk" "$tmp/consumer"; do
+for dir in "${dirs[@]}"; do
     "$dir/modern_nbody" > "$dir/modern.txt"
     "$dir/f77_nbody" > "$dir/f77.txt"
     "$dir/c_nbody" > "$dir/c.txt"
