@@ -17,8 +17,8 @@ program fsym_tests
 
     filter = ''
     if (command_argument_count() > 0) call get_command_argument(1, filter)
-    tests = [collect_scheme(), collect_kepler(), collect_integrator(), collect_errors(), collect_nbody(), &
-             collect_legacy()]
+    tests = [collect_scheme(), collect_kepler(), collect_integrator(), collect_errors(), &
+             collect_nbody(), collect_legacy()]
     npass = 0; nfail = 0
     do k = 1, size(tests)
         if (len_trim(filter) > 0) then
