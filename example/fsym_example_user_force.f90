@@ -2,7 +2,8 @@
 !> the spring constants kept in the extension of `force_model_t`. The model reports a failure
 !> through `stat` when two neighbours coincide (the spring direction is then undefined).
 !> The chain is integrated with FR and with A' (A with the gradient term by extrapolation,
-!> since this model provides no gradient), and the energy drift is printed.
+!> since this model provides no gradient), and the energy drift is printed. Last, a step from
+!> a configuration the model refuses shows its failure coming back as a status.
 program fsym_example_user_force
     use fsym
     use fsym_chain_model, only: chain_model_t
@@ -11,7 +12,7 @@ program fsym_example_user_force
     character(len=*), parameter :: methods(2) = ['FR', 'A ']
     type(chain_model_t) :: chain
     type(integrator_t) :: integ
-    real(wp) :: q(3, n), v(3, n), e0, e1, h
+    real(wp) :: q(3, n), v(3, n), q_before(3, n), e0, e1, h
     integer :: j, m, stat
     character(len=256) :: errmsg
 
@@ -43,6 +44,14 @@ program fsym_example_user_force
             abs((e1 - e0) / e0)
     end do
     write (*, '(a,i0)') 'force evaluations seen by the model: ', chain%calls
+
+    ! the model's own failure: put mass 2 on top of mass 1; the step is refused and undone
+    q(:, 2) = q(:, 1)
+    q_before = q
+    call integ%step(chain, q, v, h, stat, errmsg)
+    write (*, '(a,i0,a,l1)') 'coincident masses: stat = ', stat, ', q unchanged: ', &
+        all(q == q_before)
+    write (*, '(a)') '  '//trim(errmsg)
 
 contains
 
