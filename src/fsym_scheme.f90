@@ -40,10 +40,12 @@ module fsym_scheme
         integer :: ngrad = 0                    !! gradient evaluations per step
     contains
         procedure :: needs_gradient => scheme_needs_gradient
+            !! true when any stage is a gradient kick
         procedure :: extrapolated => scheme_extrapolated
-        procedure :: describe => scheme_describe
-        procedure :: min_drift => scheme_min_drift
-        procedure :: min_kick => scheme_min_kick
+            !! the scheme with extrapolated kicks (A -> A')
+        procedure :: describe => scheme_describe        !! one text line per stage
+        procedure :: min_drift => scheme_min_drift      !! smallest drift weight
+        procedure :: min_kick => scheme_min_kick        !! smallest kick weight
     end type scheme_t
 
     public :: fsym_scheme_custom, fsym_scheme_by_name, fsym_catalogue, fsym_op_name
