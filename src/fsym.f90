@@ -1,5 +1,5 @@
-!> forward-symplectic: fourth-order forward and non-forward symplectic integrators for
-!> classical dynamics (S. A. Chin). The umbrella module: `use fsym` gives the public API.
+!> The umbrella module of forward-symplectic, fourth-order forward and non-forward symplectic
+!> integrators for classical dynamics (S. A. Chin): `use fsym` gives the public API.
 module fsym
     use fsym_kinds, only: wp, ik
     use fsym_status
@@ -11,6 +11,7 @@ module fsym
     use fsym_methods
     use fsym_kepler
     use fsym_models
+    use fsym_nbody
     use fsym_trace
     use fsym_analysis
     use fsym_diagnostics
