@@ -3,19 +3,22 @@
 !> time each method needs to reach target errors, ranked. Writes the table of every run
 !> (CSV, read by scripts/plot_workprec.py) and the report `doc/work-precision.md`.
 !>
-!> Usage: fsym-workprec [md_path csv_path hardware compiler flags [nsweep2]]
-!> The hardware, compiler and flags strings are printed into the report as given.
+!> Usage: fsym-workprec [md_path csv_path h5_path hardware compiler flags [nsweep2 [nsweep1 [Nmax]]]]
+!> The hardware, compiler and flags strings are printed into the report as given. The HDF5
+!> file holds, per orbit group (`e0.9`, `e0.6`), 2D datasets (step size x method) of every
+!> measured quantity, the method names and the run's description as attributes.
 program fsym_workprec
     use, intrinsic :: iso_fortran_env, only: output_unit, int64
     use fsym
     use fsym_timing, only: seconds_since, median
+    use fsym_h5, only: h5_file_t
     implicit none
 
     integer, parameter :: norbit = 2
-    integer, parameter :: nsweep1 = 12          ! step sizes on the e = 0.9 orbit
-    real(wp), parameter :: nmin = 100.0_wp, nmax = 20000.0_wp   ! steps per period
+    real(wp), parameter :: nmin = 100.0_wp   ! steps per period, coarsest
+    real(wp) :: nmax = 20000.0_wp            ! steps per period, finest
     character(len=FSYM_NAME_LEN), allocatable :: names(:)
-    character(len=512) :: md_path, csv_path, hardware, compiler, flags, arg
+    character(len=512) :: md_path, csv_path, h5_path, hardware, compiler, flags, arg
     integer :: nsweep(norbit), nm, io, ie, im, u
     real(wp), allocatable :: tim(:, :, :), de(:, :, :), prec(:, :, :), phase(:, :, :)
     real(wp), allocatable :: nfe(:, :, :), nge(:, :, :), steps_per_period(:, :)
@@ -25,19 +28,30 @@ program fsym_workprec
 
     md_path = 'doc/work-precision.md'
     csv_path = 'doc/work-precision.csv'
+    h5_path = 'out/work-precision.h5'
     hardware = 'unknown'; compiler = 'unknown'; flags = 'unknown'
-    nsweep = [nsweep1, 12]
-    if (command_argument_count() >= 5) then
+    nsweep = [12, 8]
+    if (command_argument_count() >= 6) then
         call get_command_argument(1, md_path)
         call get_command_argument(2, csv_path)
-        call get_command_argument(3, hardware)
-        call get_command_argument(4, compiler)
-        call get_command_argument(5, flags)
+        call get_command_argument(3, h5_path)
+        call get_command_argument(4, hardware)
+        call get_command_argument(5, compiler)
+        call get_command_argument(6, flags)
     end if
-    if (command_argument_count() >= 6) then
-        call get_command_argument(6, arg)
+    if (command_argument_count() >= 7) then
+        call get_command_argument(7, arg)
         read (arg, *) nsweep(2)
     end if
+    if (command_argument_count() >= 8) then
+        call get_command_argument(8, arg)
+        read (arg, *) nsweep(1)
+    end if
+    if (command_argument_count() >= 9) then      ! finest N (a quick smoke test)
+        call get_command_argument(9, arg)
+        read (arg, *) nmax
+    end if
+    nsweep = max(2, nsweep)
     call system_clock(t0)
 
     names = fsym_method_names()
@@ -84,7 +98,9 @@ program fsym_workprec
     end do
     close (u)
     call write_report()
-    write (output_unit, '(a)') 'wrote '//trim(md_path)//' and '//trim(csv_path)
+    call write_h5()
+    write (output_unit, '(a)') 'wrote '//trim(md_path)//', '//trim(csv_path)//' and '// &
+        trim(h5_path)
 
 contains
 
@@ -330,6 +346,58 @@ contains
         end do
         close (iu)
     end subroutine write_report
+
+    !> Every measured quantity to the HDF5 file (written atomically by `fsym_h5`).
+    subroutine write_h5()
+        type(h5_file_t) :: f
+        character(len=8), parameter :: grp(norbit) = [character(len=8) :: 'e0.9', 'e0.6']
+        integer, parameter :: nper(norbit) = [10, 200]
+        character(len=:), allocatable :: list, g
+        character(len=512) :: msg
+        integer :: st, j, k
+        list = trim(names(1))
+        do j = 2, nm
+            list = list//','//trim(names(j))
+        end do
+        msg = ''
+        call f%create(trim(h5_path), st, msg)
+        if (st /= FSYM_SUCCESS) then
+            write (output_unit, '(a)') 'fsym-workprec: '//trim(msg)
+            error stop 1
+        end if
+        call f%set_attr('/', 'methods', list, st, msg)
+        if (st == FSYM_SUCCESS) call f%set_attr('/', 'hardware', trim(hardware), st, msg)
+        if (st == FSYM_SUCCESS) call f%set_attr('/', 'compiler', trim(compiler), st, msg)
+        if (st == FSYM_SUCCESS) call f%set_attr('/', 'flags', trim(flags), st, msg)
+        if (st == FSYM_SUCCESS) call f%set_attr('/', 'gradient_cost', gcost, st, msg)
+        if (st == FSYM_SUCCESS) call f%write('forward', merge(1, 0, fwd), st, msg)
+        do j = 1, norbit
+            if (st /= FSYM_SUCCESS) exit
+            g = trim(grp(j)); k = nsweep(j)
+            call f%make_group(g, st, msg)
+            if (st == FSYM_SUCCESS) call f%set_attr(g, 'periods', nper(j), st, msg)
+            if (st == FSYM_SUCCESS) call f%write(g//'/steps_per_period', &
+                                                 steps_per_period(1:k, j), st, msg)
+            if (st == FSYM_SUCCESS) call f%write(g//'/time_s', tim(1:k, :, j), st, msg)
+            if (st == FSYM_SUCCESS) call f%write(g//'/force_evals', nfe(1:k, :, j), st, msg)
+            if (st == FSYM_SUCCESS) call f%write(g//'/grad_evals', nge(1:k, :, j), st, msg)
+            if (st == FSYM_SUCCESS) call f%write(g//'/max_rel_energy_error', &
+                                                 de(1:k, :, j), st, msg)
+            if (st == FSYM_SUCCESS) call f%write(g//'/precession_rad', prec(1:k, :, j), &
+                                                 st, msg)
+            if (st == FSYM_SUCCESS) call f%write(g//'/phase_error', phase(1:k, :, j), &
+                                                 st, msg)
+        end do
+        if (st == FSYM_SUCCESS) then
+            call f%close(st, msg)
+        else
+            call f%abort()
+        end if
+        if (st /= FSYM_SUCCESS) then
+            write (output_unit, '(a)') 'fsym-workprec: HDF5 output failed: '//trim(msg)
+            error stop 1
+        end if
+    end subroutine write_h5
 
     !> Indices sorting t ascending, with the non-positive (not reached) last.
     subroutine rank_order(t, order)
