@@ -8,7 +8,7 @@ module fsym_handloops
     implicit none
     private
 
-    public :: hand_fr, hand_a, hand_c, hand_a6, hand_bm
+    public :: hand_fr, hand_a, hand_c, hand_a6, hand_bm, hand_fr_n
 
 contains
 
@@ -145,6 +145,34 @@ contains
         end do
         q = [x, y]; v = [vx, vy]
     end subroutine hand_bm
+
+    !> Forest-Ruth for n independent planar orbits, q(2, n): every stage a loop over the
+    !> bodies with the force written out (vectorisable).
+    subroutine hand_fr_n(c, h, nsteps, n, q, v)
+        real(wp), intent(in) :: c(7)                !! stage weights of the table
+        real(wp), intent(in) :: h                   !! step
+        integer(ik), intent(in) :: nsteps           !! number of steps
+        integer, intent(in) :: n                    !! bodies
+        real(wp), intent(inout) :: q(2, n), v(2, n) !! state
+        real(wp) :: d1, d3, k2, k4, ax, ay
+        integer(ik) :: i
+        integer :: j
+        d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h
+        do i = 1, nsteps
+            do j = 1, n
+                q(:, j) = q(:, j) + d1 * v(:, j)
+                call acc(q(1, j), q(2, j), ax, ay)
+                v(1, j) = v(1, j) + k2 * ax; v(2, j) = v(2, j) + k2 * ay
+                q(:, j) = q(:, j) + d3 * v(:, j)
+                call acc(q(1, j), q(2, j), ax, ay)
+                v(1, j) = v(1, j) + k4 * ax; v(2, j) = v(2, j) + k4 * ay
+                q(:, j) = q(:, j) + d3 * v(:, j)
+                call acc(q(1, j), q(2, j), ax, ay)
+                v(1, j) = v(1, j) + k2 * ax; v(2, j) = v(2, j) + k2 * ay
+                q(:, j) = q(:, j) + d1 * v(:, j)
+            end do
+        end do
+    end subroutine hand_fr_n
 
     !> Kepler acceleration, mu = 1, written as the library's model writes it.
     pure subroutine acc(x, y, ax, ay)
