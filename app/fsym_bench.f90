@@ -82,25 +82,11 @@ contains
             call fsym_scheme_by_name(names(m), s)
             call integ%init(s, model, 2, 1, st)
             do r = 1, nrep
-                ! library
-                call integ%init(s, model, 2, 1, st)
-                q(:, 1) = q0; v(:, 1) = v0
-                call system_clock(t0)
-                do k = 1, nsteps
-                    call integ%step(model, q, v, h)
-                end do
-                tlib(r) = seconds_since(t0)
+                call timed_steps(integ, s, model, q0, v0, h, nsteps, q, v, tlib(r))    ! library
                 qlib = q(:, 1)
                 nfe = real(integ%force_evaluations() + integ%gradient_evaluations(), wp) / &
                       real(nsteps, wp)
-                ! general path
-                call integ%init(s, general, 2, 1, st)
-                q(:, 1) = q0; v(:, 1) = v0
-                call system_clock(t0)
-                do k = 1, nsteps
-                    call integ%step(general, q, v, h)
-                end do
-                tgen(r) = seconds_since(t0)
+                call timed_steps(integ, s, general, q0, v0, h, nsteps, q, v, tgen(r))  ! general
                 ! hand loop
                 qh = q0; vh = v0
                 call system_clock(t0)
@@ -127,7 +113,27 @@ contains
                 tl / nfe, ' | ', th / nfe, ' | ', tl / th, ' | ', tg / th, ' | ', dq, ' |'
         end do
         write (output_unit, '(a)') ''
+
     end subroutine bench_overhead
+
+    !> nsteps library steps of scheme s with `mdl` from (q0, v0); their time t.
+    subroutine timed_steps(integ, s, mdl, q0, v0, h, nsteps, q, v, t)
+        type(integrator_t), intent(inout) :: integ
+        type(scheme_t), intent(in) :: s
+        class(force_model_t), intent(inout) :: mdl
+        real(wp), intent(in) :: q0(2), v0(2), h
+        integer(ik), intent(in) :: nsteps
+        real(wp), intent(out) :: q(2, 1), v(2, 1), t
+        integer(int64) :: t0
+        integer(ik) :: k
+        call integ%init(s, mdl, 2, 1)
+        q(:, 1) = q0; v(:, 1) = v0
+        call system_clock(t0)
+        do k = 1, nsteps
+            call integ%step(mdl, q, v, h)
+        end do
+        t = seconds_since(t0)
+    end subroutine timed_steps
 
     !> n independent Kepler orbits in one state array: ns per particle-force for the force
     !> alone, for a whole library FR step, and for the hand-written FR loop over the bodies.

@@ -48,5 +48,29 @@ done
     fpm run --profile release --flag "$FLAGS" fsym-bench -- memory 10000000 2>/dev/null
     echo '```'
 } >> "$tmp"
+cat >> "$tmp" <<'NOTES'
+
+## Notes on the design (what the tables measure)
+
+- Library step, Kepler path: `integrator_t%step` recognises the library's own
+  `kepler_model_t` (exactly that type) and calls `fsym_kernel_step_kepler`, which runs the
+  whole step in the kernel with the force (`kepler_field`) called directly: no reverse
+  communication and no dynamic dispatch per force. It uses the same stage routines
+  (`stage_drift/kick/grad_kick/shift`), the same force-reuse rules, checks and counters as
+  `fsym_kernel_resume`; `test/test_fastpath.f90` checks bitwise equality of the states, the
+  counters and the failure messages against the general path.
+- General path: any other model (here an extension of `kepler_model_t`): the kernel returns
+  to `integrator_t%step` for every force, which calls the model's type-bound procedure.
+- What is left between the Kepler path and the hand loop for one body (d = 2, n = 1): the
+  state lives in arrays in memory (q, v, the work slots), so every stage is a store and a
+  reload on the critical path, plus per step the checks the library promises (finite state
+  and forces, restore on failure: copies of q and v, first-same-as-last check). The hand loop
+  keeps four scalars in registers. Tried and kept: the Kepler path above, planar/spatial
+  cases of the force written out so that they vectorise, partial sums in the finiteness
+  check (a single running sum was a chain of dependent additions and dominated large
+  arrays). Tried and dropped: `-flto` (no gain measured).
+- Time per step outside the force is the kernel's O(n) work; for the N-body force it is
+  O(N) against the force's O(N^2).
+NOTES
 mv "$tmp" "$out"
 echo "wrote $out"

@@ -107,12 +107,24 @@ contains
     end function fsym_kernel_slot
 
     !> True when every element is finite (one summation; an element-wise look only when the
-    !> sum is not finite).
+    !> sum is not finite). The sum runs in 16 interleaved partial sums so that it vectorises
+    !> (a single running sum is a chain of dependent additions: 4 cycles per element).
     pure logical function fsym_all_finite(m, x)
         integer, intent(in) :: m         !! number of elements
         real(wp), intent(in) :: x(m)     !! values
-        real(wp) :: s
-        s = sum(x)
+        integer, parameter :: nacc = 16
+        real(wp) :: s, acc(nacc)
+        integer :: i, mb
+        if (m < nacc) then
+            s = sum(x)
+        else
+            mb = m - mod(m, nacc)
+            acc = x(1:nacc)
+            do i = nacc + 1, mb, nacc
+                acc = acc + x(i:i + nacc - 1)
+            end do
+            s = sum(acc) + sum(x(mb + 1:m))
+        end if
         if (abs(s) <= huge(s)) then
             fsym_all_finite = .true.
         else
