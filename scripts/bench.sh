@@ -23,7 +23,7 @@ fpm build --profile release --flag "$FLAGS" >/dev/null
     echo "- Compiler: $(gfortran --version | head -1)"
     echo "- Flags: \`$FLAGS\` (\`fpm run --profile release --flag \"$FLAGS\" fsym-bench\`)"
     echo
-    fpm run --profile release --flag "$FLAGS" fsym-bench -- all 2>/dev/null
+    fpm run --profile release --flag "$FLAGS" fsym-bench -- all 2>/dev/null | grep -v '^\['
     echo "## Memory"
     echo
     echo "No allocation after \`init\`: three steppers (FR on the kernel's Kepler path, C' on"
@@ -45,7 +45,7 @@ done
     echo "Flat memory over 1e7 steps (\`fpm run --profile release --flag \"$FLAGS\" fsym-bench -- memory 10000000\`):"
     echo
     echo '```'
-    fpm run --profile release --flag "$FLAGS" fsym-bench -- memory 10000000 2>/dev/null
+    fpm run --profile release --flag "$FLAGS" fsym-bench -- memory 10000000 2>/dev/null | grep -v '^\['
     echo '```'
 } >> "$tmp"
 cat >> "$tmp" <<'NOTES'
