@@ -322,10 +322,13 @@ contains
     !> A whole step for the Kepler force of the library (`kepler_field`, n bodies about a
     !> fixed centre of parameter mu), without reverse communication: the same stages, the
     !> same stage arithmetic (the `stage_*` routines `fsym_kernel_resume` uses), the same
-    !> force-reuse rules, checks and counters, so the result is bitwise the result of
-    !> `fsym_kernel_begin` + `fsym_kernel_resume` driven with that force. Not for compensated
-    !> runs (stat = FSYM_ERR_BAD_REQUEST: use the general path). On failure q and v are
-    !> restored and iw(KW_PC) names the stage that failed (0: rejected on entry).
+    !> force-reuse rules, checks and counters, so the state is bitwise the state of
+    !> `fsym_kernel_begin` + `fsym_kernel_resume` driven with that force. The bodies are
+    !> independent, so all stages run on one block of `KEPLER_BLOCK` bodies after the other
+    !> (the block stays in cache). Not for compensated runs (stat = FSYM_ERR_BAD_REQUEST:
+    !> use the general path). On failure q and v are restored and iw(KW_PC) names the stage
+    !> that failed (0: rejected on entry; with several failing bodies it may be a later stage
+    !> than the general path names).
     subroutine fsym_kernel_step_kepler(nop, op, c, u, d, n, q, v, h, mu, w, nslot, iw, rw, &
                                        nf, ng, stat)
         integer, intent(in) :: nop                    !! number of stages
@@ -340,8 +343,10 @@ contains
         real(wp), intent(inout) :: rw(KERNEL_NRW)     !! kernel real state
         integer(ik), intent(inout) :: nf, ng          !! evaluation counters
         integer, intent(out) :: stat                  !! FSYM_SUCCESS or an error code
-        integer :: k, m, ia, ig, iqe, iae
-        real(wp) :: shift
+        integer, parameter :: KEPLER_BLOCK = 64
+        integer :: k, m, ia, ig, iqe, iae, j0, j1, mb, have0(3)
+        integer(ik) :: nf0, ng0
+        real(wp) :: shift, xshift0
 
         if (iw(KW_COMP) /= 0) then
             stat = FSYM_ERR_BAD_REQUEST; return
@@ -353,48 +358,60 @@ contains
         m = d * n
         ia = iw(KW_MAP - 1 + SLOT_A); ig = iw(KW_MAP - 1 + SLOT_G)
         iqe = iw(KW_MAP - 1 + SLOT_QE); iae = iw(KW_MAP - 1 + SLOT_AE)
-        do k = 1, nop
-            iw(KW_PC) = k
-            select case (op(k))
-            case (OP_DRIFT)
-                call stage_drift(m, q, v, c(k) * h)
-                iw(KW_HAVE_A) = 0; iw(KW_HAVE_G) = 0; iw(KW_HAVE_X) = 0
-            case (OP_KICK)
-                if (iw(KW_HAVE_A) == 0) then
-                    call get_force()
-                    if (stat /= FSYM_SUCCESS) return
-                end if
-                call stage_kick(m, v, w(:, :, ia), c(k) * h)
-            case (OP_GRAD_KICK)
-                if (iw(KW_HAVE_A) == 0) then
-                    call get_force()
-                    if (stat /= FSYM_SUCCESS) return
-                end if
-                if (iw(KW_HAVE_G) == 0) then
-                    call kepler_field_gradient(d, n, mu, q, w(:, :, ia), w(:, :, ig))
-                    if (.not. fsym_all_finite(m, w(:, :, ig))) then
-                        call fail(FSYM_ERR_NONFINITE_FORCE); return
+        ! every block starts from the same cache state and counts from the same counters
+        have0 = iw(KW_HAVE_A:KW_HAVE_X); xshift0 = rw(KR_XSHIFT)
+        nf0 = nf; ng0 = ng
+        do j0 = 1, n, KEPLER_BLOCK
+            j1 = min(n, j0 + KEPLER_BLOCK - 1)
+            mb = d * (j1 - j0 + 1)
+            iw(KW_HAVE_A:KW_HAVE_X) = have0; rw(KR_XSHIFT) = xshift0
+            nf = nf0; ng = ng0
+            do k = 1, nop
+                iw(KW_PC) = k
+                select case (op(k))
+                case (OP_DRIFT)
+                    call stage_drift(mb, q(:, j0:j1), v(:, j0:j1), c(k) * h)
+                    iw(KW_HAVE_A) = 0; iw(KW_HAVE_G) = 0; iw(KW_HAVE_X) = 0
+                case (OP_KICK)
+                    if (iw(KW_HAVE_A) == 0) then
+                        call get_force()
+                        if (stat /= FSYM_SUCCESS) return
                     end if
-                    iw(KW_HAVE_G) = 1; ng = ng + 1
-                end if
-                call stage_grad_kick(m, v, w(:, :, ia), w(:, :, ig), c(k) * h, u(k) * h**3)
-            case (OP_EXTRAP_KICK)
-                if (iw(KW_HAVE_A) == 0) then
-                    call get_force()
-                    if (stat /= FSYM_SUCCESS) return
-                end if
-                shift = u(k) * h * h
-                if (iw(KW_HAVE_X) == 0 .or. rw(KR_XSHIFT) /= shift) then
-                    call stage_shift(m, w(:, :, iqe), q, w(:, :, ia), shift)
-                    rw(KR_XSHIFT) = shift
-                    call kepler_field(d, n, mu, w(:, :, iqe), w(:, :, iae))
-                    if (.not. fsym_all_finite(m, w(:, :, iae))) then
-                        call fail(FSYM_ERR_NONFINITE_FORCE); return
+                    call stage_kick(mb, v(:, j0:j1), w(:, j0:j1, ia), c(k) * h)
+                case (OP_GRAD_KICK)
+                    if (iw(KW_HAVE_A) == 0) then
+                        call get_force()
+                        if (stat /= FSYM_SUCCESS) return
                     end if
-                    iw(KW_HAVE_X) = 1; nf = nf + 1
-                end if
-                call stage_kick(m, v, w(:, :, iae), c(k) * h)
-            end select
+                    if (iw(KW_HAVE_G) == 0) then
+                        call kepler_field_gradient(d, j1 - j0 + 1, mu, q(:, j0:j1), &
+                                                   w(:, j0:j1, ia), w(:, j0:j1, ig))
+                        if (.not. fsym_all_finite(mb, w(:, j0:j1, ig))) then
+                            call fail(FSYM_ERR_NONFINITE_FORCE); return
+                        end if
+                        iw(KW_HAVE_G) = 1; ng = ng + 1
+                    end if
+                    call stage_grad_kick(mb, v(:, j0:j1), w(:, j0:j1, ia), w(:, j0:j1, ig), &
+                                         c(k) * h, u(k) * h**3)
+                case (OP_EXTRAP_KICK)
+                    if (iw(KW_HAVE_A) == 0) then
+                        call get_force()
+                        if (stat /= FSYM_SUCCESS) return
+                    end if
+                    shift = u(k) * h * h
+                    if (iw(KW_HAVE_X) == 0 .or. rw(KR_XSHIFT) /= shift) then
+                        call stage_shift(mb, w(:, j0:j1, iqe), q(:, j0:j1), w(:, j0:j1, ia), &
+                                         shift)
+                        rw(KR_XSHIFT) = shift
+                        call kepler_field(d, j1 - j0 + 1, mu, w(:, j0:j1, iqe), w(:, j0:j1, iae))
+                        if (.not. fsym_all_finite(mb, w(:, j0:j1, iae))) then
+                            call fail(FSYM_ERR_NONFINITE_FORCE); return
+                        end if
+                        iw(KW_HAVE_X) = 1; nf = nf + 1
+                    end if
+                    call stage_kick(mb, v(:, j0:j1), w(:, j0:j1, iae), c(k) * h)
+                end select
+            end do
         end do
         iw(KW_PC) = nop + 1
         if (.not. (fsym_all_finite(m, q) .and. fsym_all_finite(m, v))) then
@@ -406,10 +423,10 @@ contains
 
     contains
 
-        !> a(q) into SLOT_A, checked and counted.
+        !> a(q) of the block into SLOT_A, checked and counted.
         subroutine get_force()
-            call kepler_field(d, n, mu, q, w(:, :, ia))
-            if (.not. fsym_all_finite(m, w(:, :, ia))) then
+            call kepler_field(d, j1 - j0 + 1, mu, q(:, j0:j1), w(:, j0:j1, ia))
+            if (.not. fsym_all_finite(mb, w(:, j0:j1, ia))) then
                 call fail(FSYM_ERR_NONFINITE_FORCE); return
             end if
             iw(KW_HAVE_A) = 1; nf = nf + 1

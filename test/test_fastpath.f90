@@ -27,17 +27,18 @@ contains
             'A''', 'C', 'C''', 'A6', 'BM']
         type(kepler_model_t) :: fast
         type(wrapped_kepler_t) :: slow
+        integer, parameter :: nb = 150     ! more than one block of the Kepler path
         type(integrator_t) :: i1, i2
-        real(wp) :: q1(3, 4), v1(3, 4), q2(3, 4), v2(3, 4), h
+        real(wp) :: q1(3, nb), v1(3, nb), q2(3, nb), v2(3, nb), h
         integer :: m, k, j, st
         fast%mu = 1.3_wp; slow%mu = 1.3_wp
         do m = 1, size(names)
-            call i1%init_by_name(trim(names(m)), fast, 3, 4, st)
-            call i2%init_by_name(trim(names(m)), slow, 3, 4, st)
+            call i1%init_by_name(trim(names(m)), fast, 3, nb, st)
+            call i2%init_by_name(trim(names(m)), slow, 3, nb, st)
             call check(err, st == 0, 'init '//trim(names(m)))
-            do j = 1, 4
-                q1(:, j) = [1.0_wp + 0.1_wp * j, 0.2_wp * j, -0.1_wp]
-                v1(:, j) = [0.05_wp, 1.0_wp - 0.1_wp * j, 0.1_wp]
+            do j = 1, nb
+                q1(:, j) = [1.0_wp + 0.01_wp * j, 0.02_wp * j, -0.1_wp]
+                v1(:, j) = [0.05_wp, 1.0_wp - 0.001_wp * j, 0.1_wp]
             end do
             q2 = q1; v2 = v1
             h = 0.01_wp
@@ -80,6 +81,32 @@ contains
         call i1%step(fast, q1, v1, 0.0_wp, st1, m1)
         call i2%step(slow, q2, v2, 0.0_wp, st2, m2)
         call check(err, st1 == FSYM_ERR_BAD_STEP .and. st2 == st1 .and. m1 == m2, 'zero step')
+        call many_bodies(err)
     end subroutine t_failure
+
+    !> One body at the centre among 150 (the Kepler path works in blocks): the same failure,
+    !> every body restored.
+    subroutine many_bodies(err)
+        character(len=:), allocatable, intent(inout) :: err
+        integer, parameter :: nb = 150
+        type(kepler_model_t) :: fast
+        type(wrapped_kepler_t) :: slow
+        type(integrator_t) :: i1, i2
+        real(wp) :: q0(2, nb), v0(2, nb), q1(2, nb), v1(2, nb), q2(2, nb), v2(2, nb)
+        integer :: j, st1, st2
+        do j = 1, nb
+            q0(:, j) = [1.0_wp + 0.01_wp * j, 0.0_wp]
+            v0(:, j) = [0.0_wp, 1.0_wp]
+        end do
+        q0(:, 100) = 0.0_wp; v0(:, 100) = 0.0_wp
+        call i1%init_by_name('A', fast, 2, nb)
+        call i2%init_by_name('A', slow, 2, nb)
+        q1 = q0; v1 = v0; q2 = q0; v2 = v0
+        call i1%step(fast, q1, v1, 0.01_wp, st1)
+        call i2%step(slow, q2, v2, 0.01_wp, st2)
+        call check(err, st1 == FSYM_ERR_NONFINITE_FORCE .and. st2 == st1, 'many bodies: status')
+        call check(err, all(q1 == q0) .and. all(v1 == v0) .and. all(q2 == q0) .and. &
+                   all(v2 == v0), 'many bodies: state not restored')
+    end subroutine many_bodies
 
 end module test_fastpath
