@@ -8,6 +8,7 @@ module fsym_integrator
                           EVAL_EXTRAPOLATED
     use fsym_stepper, only: stepper_t
     use fsym_kernel
+    use fsym_kepler, only: kepler_model_t
     implicit none
     private
 
@@ -20,6 +21,7 @@ module fsym_integrator
         real(wp) :: rw(KERNEL_NRW) = 0.0_wp
         integer :: nslot = 0
         logical :: ready = .false.
+        logical :: needs_g = .false.        ! the scheme has gradient kicks
     contains
         procedure :: init => integrator_init
             !! set up for a scheme, a model and arrays (d, n)
@@ -92,6 +94,7 @@ contains
         call self%describe_stepper(s%name, d, n, .true., s%forward, s%symplectic, s%nforce, &
                                    s%ngrad, 0.0_wp)
         if (present(t0)) call self%set_time(t0)
+        self%needs_g = s%needs_gradient()
         self%ready = .true.
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine integrator_init
@@ -139,16 +142,36 @@ contains
         if (size(q, 1) /= d .or. size(q, 2) /= n .or. size(v, 1) /= d .or. size(v, 2) /= n) then
             call fsym_report(FSYM_ERR_SHAPE, shape_text(d, n, q, v), stat, errmsg); return
         end if
-        if (self%sc%needs_gradient()) then
+        if (self%needs_g) then
             if (.not. model%has_gradient()) then
                 call fsym_report(FSYM_ERR_NO_GRADIENT, 'method '//self%sc%name// &
                                  ': this model has no gradient term', stat, errmsg); return
             end if
         end if
+        ! Specialised path for the library's Kepler model (exactly that type, not extensions of
+        ! it, which may override the force): the kernel runs the whole step with the force
+        ! called directly (no reverse communication, no dynamic dispatch per force); same
+        ! stage arithmetic, bitwise the same result as the general path below.
+        if (.not. (present(recorder) .or. self%iw(KW_COMP) /= 0)) then
+            select type (model)
+            type is (kepler_model_t)
+                call self%counters(nf, ng, 0)
+                call fsym_kernel_step_kepler(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, d, &
+                                             n, q, v, h, model%mu, self%w, self%nslot, self%iw, &
+                                             self%rw, nf, ng, st)
+                call self%counters(nf, ng, 1)
+                if (st /= FSYM_SUCCESS) then
+                    call report_failure(self%iw(KW_PC) == 0)
+                    return
+                end if
+                call self%count_step(h)
+                if (present(stat)) stat = FSYM_SUCCESS
+                return
+            end select
+        end if
         call fsym_kernel_begin(d, n, q, v, h, self%w, self%nslot, self%iw, self%rw, st)
         if (st /= FSYM_SUCCESS) then
-            call fsym_report(st, 'method '//self%sc%name//', step '// &
-                             itoa(self%steps() + 1), stat, errmsg); return
+            call report_failure(.true.); return
         end if
         ia = fsym_kernel_slot(self%iw, SLOT_A); ig = fsym_kernel_slot(self%iw, SLOT_G)
         iqe = fsym_kernel_slot(self%iw, SLOT_QE); iae = fsym_kernel_slot(self%iw, SLOT_AE)
@@ -179,14 +202,28 @@ contains
         end do
         call self%counters(nf, ng, 1)
         if (st /= FSYM_SUCCESS) then
-            call fsym_report(st, 'method '//self%sc%name//', step '//itoa(istep)//', stage '// &
-                             itoa(int(self%iw(KW_PC), ik))//' ('// &
-                             fsym_op_name(self%sc%op(min(self%iw(KW_PC), self%sc%nop)))// &
-                             '); state restored', stat, errmsg)
-            return
+            call report_failure(.false.); return
         end if
         call self%count_step(h)
         if (present(stat)) stat = FSYM_SUCCESS
+
+    contains
+
+        !> Report a failed step (at the start of the step when `at_begin`).
+        subroutine report_failure(at_begin)
+            logical, intent(in) :: at_begin
+            if (at_begin) then
+                call fsym_report(st, 'method '//self%sc%name//', step '// &
+                                 itoa(self%steps() + 1), stat, errmsg)
+            else
+                call fsym_report(st, 'method '//self%sc%name//', step '// &
+                                 itoa(self%steps() + 1)//', stage '// &
+                                 itoa(int(self%iw(KW_PC), ik))//' ('// &
+                                 fsym_op_name(self%sc%op(min(self%iw(KW_PC), self%sc%nop)))// &
+                                 '); state restored', stat, errmsg)
+            end if
+        end subroutine report_failure
+
     end subroutine integrator_step
 
     !> Release the workspace; `init` must be called again before use.

@@ -26,7 +26,7 @@ module fsym_kepler
     public :: kepler_acceleration, kepler_gradient, kepler_potential, kepler_energy
     public :: kepler_lrl, kepler_angular_momentum_2d, kepler_angular_momentum_sq
     public :: kepler_elements, kepler_period, kepler_exact, kepler_paper_orbit
-    public :: kepler_elliptic_orbit, kepler_lrl_angle
+    public :: kepler_elliptic_orbit, kepler_lrl_angle, kepler_field, kepler_field_gradient
 
 contains
 
@@ -205,13 +205,7 @@ contains
         real(wp), intent(in) :: q(:, :)                !! positions (d, n)
         real(wp), intent(out) :: a(:, :)               !! accelerations (d, n)
         integer, intent(inout) :: stat                 !! unchanged: never fails itself
-        integer :: j
-        real(wp) :: r2, s
-        do j = 1, size(q, 2)
-            r2 = sum(q(:, j)**2)
-            s = -self%mu / (r2 * sqrt(r2))
-            a(:, j) = s * q(:, j)
-        end do
+        call kepler_field(size(q, 1), size(q, 2), self%mu, q, a)
     end subroutine kepler_model_acceleration
 
     !> Gradient term of every column: -4 mu^2 q/|q|^6.
@@ -221,13 +215,78 @@ contains
         real(wp), intent(in) :: a(:, :)                !! accelerations at q (used: g = 4 a/r^3)
         real(wp), intent(out) :: g(:, :)               !! gradient term (d, n)
         integer, intent(inout) :: stat                 !! unchanged: never fails itself
-        integer :: j
-        real(wp) :: r2
-        do j = 1, size(q, 2)
-            r2 = sum(q(:, j)**2)
-            g(:, j) = (4.0_wp * self%mu / (r2 * sqrt(r2))) * a(:, j)
-        end do
+        call kepler_field_gradient(size(q, 1), size(q, 2), self%mu, q, a, g)
     end subroutine kepler_model_gradient
+
+    !> Accelerations -mu q_j/|q_j|^3 of n independent bodies on explicit arrays: the one
+    !> Kepler force of the library (the model and the kernel's Kepler path call it). The
+    !> planar and spatial cases are written out so that the loop over bodies vectorises.
+    pure subroutine kepler_field(d, n, mu, q, a)
+        integer, intent(in) :: d, n               !! dimensions, bodies
+        real(wp), intent(in) :: mu                !! G M
+        real(wp), intent(in) :: q(d, n)           !! positions
+        real(wp), intent(out) :: a(d, n)          !! accelerations
+        integer :: j
+        real(wp) :: r2, s
+        select case (d)
+        case (2)
+            do j = 1, n
+                r2 = q(1, j)**2 + q(2, j)**2
+                s = -mu / (r2 * sqrt(r2))
+                a(1, j) = s * q(1, j)
+                a(2, j) = s * q(2, j)
+            end do
+        case (3)
+            do j = 1, n
+                r2 = q(1, j)**2 + q(2, j)**2 + q(3, j)**2
+                s = -mu / (r2 * sqrt(r2))
+                a(1, j) = s * q(1, j)
+                a(2, j) = s * q(2, j)
+                a(3, j) = s * q(3, j)
+            end do
+        case default
+            do j = 1, n
+                r2 = sum(q(:, j)**2)
+                s = -mu / (r2 * sqrt(r2))
+                a(:, j) = s * q(:, j)
+            end do
+        end select
+    end subroutine kepler_field
+
+    !> Gradient term g_j = 4 mu a_j/|q_j|^3 (= -4 mu^2 q_j/|q_j|^6) on explicit arrays, given
+    !> the accelerations a at q.
+    pure subroutine kepler_field_gradient(d, n, mu, q, a, g)
+        integer, intent(in) :: d, n               !! dimensions, bodies
+        real(wp), intent(in) :: mu                !! G M
+        real(wp), intent(in) :: q(d, n)           !! positions
+        real(wp), intent(in) :: a(d, n)           !! accelerations at q
+        real(wp), intent(out) :: g(d, n)          !! gradient term
+        integer :: j
+        real(wp) :: r2, s
+        select case (d)
+        case (2)
+            do j = 1, n
+                r2 = q(1, j)**2 + q(2, j)**2
+                s = 4.0_wp * mu / (r2 * sqrt(r2))
+                g(1, j) = s * a(1, j)
+                g(2, j) = s * a(2, j)
+            end do
+        case (3)
+            do j = 1, n
+                r2 = q(1, j)**2 + q(2, j)**2 + q(3, j)**2
+                s = 4.0_wp * mu / (r2 * sqrt(r2))
+                g(1, j) = s * a(1, j)
+                g(2, j) = s * a(2, j)
+                g(3, j) = s * a(3, j)
+            end do
+        case default
+            do j = 1, n
+                r2 = sum(q(:, j)**2)
+                s = 4.0_wp * mu / (r2 * sqrt(r2))
+                g(:, j) = s * a(:, j)
+            end do
+        end select
+    end subroutine kepler_field_gradient
 
     !> The Kepler model provides the gradient term.
     logical function kepler_model_has_gradient(self)

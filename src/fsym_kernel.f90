@@ -20,6 +20,7 @@ module fsym_kernel
     use fsym_kinds, only: wp, ik
     use fsym_status
     use fsym_scheme, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
+    use fsym_kepler, only: kepler_field, kepler_field_gradient
     implicit none
     private
 
@@ -63,6 +64,7 @@ module fsym_kernel
 
     public :: fsym_kernel_layout, fsym_kernel_slot, fsym_kernel_begin, fsym_kernel_resume
     public :: fsym_kernel_abort, fsym_kernel_invalidate, fsym_all_finite
+    public :: fsym_kernel_step_kepler
 
 contains
 
@@ -105,12 +107,24 @@ contains
     end function fsym_kernel_slot
 
     !> True when every element is finite (one summation; an element-wise look only when the
-    !> sum is not finite).
+    !> sum is not finite). The sum runs in 16 interleaved partial sums so that it vectorises
+    !> (a single running sum is a chain of dependent additions: 4 cycles per element).
     pure logical function fsym_all_finite(m, x)
         integer, intent(in) :: m         !! number of elements
         real(wp), intent(in) :: x(m)     !! values
-        real(wp) :: s
-        s = sum(x)
+        integer, parameter :: nacc = 16
+        real(wp) :: s, acc(nacc)
+        integer :: i, mb
+        if (m < nacc) then
+            s = sum(x)
+        else
+            mb = m - mod(m, nacc)
+            acc = x(1:nacc)
+            do i = nacc + 1, mb, nacc
+                acc = acc + x(i:i + nacc - 1)
+            end do
+            s = sum(acc) + sum(x(mb + 1:m))
+        end if
         if (abs(s) <= huge(s)) then
             fsym_all_finite = .true.
         else
@@ -235,7 +249,7 @@ contains
                 if (comp) then
                     call add_compensated(d * n, q, w(:, :, iqc), c(k) * h, v)
                 else
-                    q = q + (c(k) * h) * v
+                    call stage_drift(d * n, q, v, c(k) * h)
                 end if
                 call fsym_kernel_invalidate(iw)
             case (OP_KICK)
@@ -245,7 +259,7 @@ contains
                 if (comp) then
                     call add_compensated(d * n, v, w(:, :, ivc), c(k) * h, w(:, :, ia))
                 else
-                    v = v + (c(k) * h) * w(:, :, ia)
+                    call stage_kick(d * n, v, w(:, :, ia), c(k) * h)
                 end if
             case (OP_GRAD_KICK)
                 if (iw(KW_HAVE_A) == 0) then
@@ -258,7 +272,8 @@ contains
                     call add_compensated2(d * n, v, w(:, :, ivc), c(k) * h, w(:, :, ia), &
                                           u(k) * h**3, w(:, :, ig))
                 else
-                    v = v + ((c(k) * h) * w(:, :, ia) + (u(k) * h**3) * w(:, :, ig))
+                    call stage_grad_kick(d * n, v, w(:, :, ia), w(:, :, ig), c(k) * h, &
+                                         u(k) * h**3)
                 end if
             case (OP_EXTRAP_KICK)
                 if (iw(KW_HAVE_A) == 0) then
@@ -266,7 +281,7 @@ contains
                 end if
                 shift = u(k) * h * h
                 if (iw(KW_HAVE_X) == 0 .or. rw(KR_XSHIFT) /= shift) then
-                    w(:, :, iqe) = q + shift * w(:, :, ia)
+                    call stage_shift(d * n, w(:, :, iqe), q, w(:, :, ia), shift)
                     rw(KR_XSHIFT) = shift
                     iw(KW_HAVE_X) = 0
                     call ask(REQ_FORCE_SHIFTED); return
@@ -274,7 +289,7 @@ contains
                 if (comp) then
                     call add_compensated(d * n, v, w(:, :, ivc), c(k) * h, w(:, :, iae))
                 else
-                    v = v + (c(k) * h) * w(:, :, iae)
+                    call stage_kick(d * n, v, w(:, :, iae), c(k) * h)
                 end if
             end select
             iw(KW_PC) = k + 1
@@ -303,6 +318,162 @@ contains
         end subroutine fail
 
     end subroutine fsym_kernel_resume
+
+    !> A whole step for the Kepler force of the library (`kepler_field`, n bodies about a
+    !> fixed centre of parameter mu), without reverse communication: the same stages, the
+    !> same stage arithmetic (the `stage_*` routines `fsym_kernel_resume` uses), the same
+    !> force-reuse rules, checks and counters, so the state is bitwise the state of
+    !> `fsym_kernel_begin` + `fsym_kernel_resume` driven with that force. The bodies are
+    !> independent, so all stages run on one block of `KEPLER_BLOCK` bodies after the other
+    !> (the block stays in cache). Not for compensated runs (stat = FSYM_ERR_BAD_REQUEST:
+    !> use the general path). On failure q and v are restored and iw(KW_PC) names the stage
+    !> that failed (0: rejected on entry; with several failing bodies it may be a later stage
+    !> than the general path names).
+    subroutine fsym_kernel_step_kepler(nop, op, c, u, d, n, q, v, h, mu, w, nslot, iw, rw, &
+                                       nf, ng, stat)
+        integer, intent(in) :: nop                    !! number of stages
+        integer, intent(in) :: op(nop)                !! op codes
+        real(wp), intent(in) :: c(nop), u(nop)        !! stage coefficients
+        integer, intent(in) :: d, n, nslot            !! dimensions, bodies, slots
+        real(wp), intent(inout) :: q(d, n), v(d, n)   !! state
+        real(wp), intent(in) :: h                     !! step
+        real(wp), intent(in) :: mu                    !! G M of the centre
+        real(wp), intent(inout) :: w(d, n, nslot)     !! work slots
+        integer, intent(inout) :: iw(KERNEL_NIW)      !! kernel integer state
+        real(wp), intent(inout) :: rw(KERNEL_NRW)     !! kernel real state
+        integer(ik), intent(inout) :: nf, ng          !! evaluation counters
+        integer, intent(out) :: stat                  !! FSYM_SUCCESS or an error code
+        integer, parameter :: KEPLER_BLOCK = 64
+        integer :: k, m, ia, ig, iqe, iae, j0, j1, mb, have0(3)
+        integer(ik) :: nf0, ng0
+        real(wp) :: shift, xshift0
+
+        if (iw(KW_COMP) /= 0) then
+            stat = FSYM_ERR_BAD_REQUEST; return
+        end if
+        call fsym_kernel_begin(d, n, q, v, h, w, nslot, iw, rw, stat)
+        if (stat /= FSYM_SUCCESS) then
+            iw(KW_PC) = 0; return      ! rejected before the first stage
+        end if
+        m = d * n
+        ia = iw(KW_MAP - 1 + SLOT_A); ig = iw(KW_MAP - 1 + SLOT_G)
+        iqe = iw(KW_MAP - 1 + SLOT_QE); iae = iw(KW_MAP - 1 + SLOT_AE)
+        ! every block starts from the same cache state and counts from the same counters
+        have0 = iw(KW_HAVE_A:KW_HAVE_X); xshift0 = rw(KR_XSHIFT)
+        nf0 = nf; ng0 = ng
+        do j0 = 1, n, KEPLER_BLOCK
+            j1 = min(n, j0 + KEPLER_BLOCK - 1)
+            mb = d * (j1 - j0 + 1)
+            iw(KW_HAVE_A:KW_HAVE_X) = have0; rw(KR_XSHIFT) = xshift0
+            nf = nf0; ng = ng0
+            do k = 1, nop
+                iw(KW_PC) = k
+                select case (op(k))
+                case (OP_DRIFT)
+                    call stage_drift(mb, q(:, j0:j1), v(:, j0:j1), c(k) * h)
+                    iw(KW_HAVE_A) = 0; iw(KW_HAVE_G) = 0; iw(KW_HAVE_X) = 0
+                case (OP_KICK)
+                    if (iw(KW_HAVE_A) == 0) then
+                        call get_force()
+                        if (stat /= FSYM_SUCCESS) return
+                    end if
+                    call stage_kick(mb, v(:, j0:j1), w(:, j0:j1, ia), c(k) * h)
+                case (OP_GRAD_KICK)
+                    if (iw(KW_HAVE_A) == 0) then
+                        call get_force()
+                        if (stat /= FSYM_SUCCESS) return
+                    end if
+                    if (iw(KW_HAVE_G) == 0) then
+                        call kepler_field_gradient(d, j1 - j0 + 1, mu, q(:, j0:j1), &
+                                                   w(:, j0:j1, ia), w(:, j0:j1, ig))
+                        if (.not. fsym_all_finite(mb, w(:, j0:j1, ig))) then
+                            call fail(FSYM_ERR_NONFINITE_FORCE); return
+                        end if
+                        iw(KW_HAVE_G) = 1; ng = ng + 1
+                    end if
+                    call stage_grad_kick(mb, v(:, j0:j1), w(:, j0:j1, ia), w(:, j0:j1, ig), &
+                                         c(k) * h, u(k) * h**3)
+                case (OP_EXTRAP_KICK)
+                    if (iw(KW_HAVE_A) == 0) then
+                        call get_force()
+                        if (stat /= FSYM_SUCCESS) return
+                    end if
+                    shift = u(k) * h * h
+                    if (iw(KW_HAVE_X) == 0 .or. rw(KR_XSHIFT) /= shift) then
+                        call stage_shift(mb, w(:, j0:j1, iqe), q(:, j0:j1), w(:, j0:j1, ia), &
+                                         shift)
+                        rw(KR_XSHIFT) = shift
+                        call kepler_field(d, j1 - j0 + 1, mu, w(:, j0:j1, iqe), w(:, j0:j1, iae))
+                        if (.not. fsym_all_finite(mb, w(:, j0:j1, iae))) then
+                            call fail(FSYM_ERR_NONFINITE_FORCE); return
+                        end if
+                        iw(KW_HAVE_X) = 1; nf = nf + 1
+                    end if
+                    call stage_kick(mb, v(:, j0:j1), w(:, j0:j1, iae), c(k) * h)
+                end select
+            end do
+        end do
+        iw(KW_PC) = nop + 1
+        if (.not. (fsym_all_finite(m, q) .and. fsym_all_finite(m, v))) then
+            call fail(FSYM_ERR_NONFINITE_STATE); return
+        end if
+        if (iw(KW_HAVE_A) /= 0) w(:, :, iw(KW_MAP - 1 + SLOT_QLAST)) = q
+        iw(KW_ACTIVE) = 0
+        iw(KW_REQ) = REQ_DONE
+
+    contains
+
+        !> a(q) of the block into SLOT_A, checked and counted.
+        subroutine get_force()
+            call kepler_field(d, j1 - j0 + 1, mu, q(:, j0:j1), w(:, j0:j1, ia))
+            if (.not. fsym_all_finite(mb, w(:, j0:j1, ia))) then
+                call fail(FSYM_ERR_NONFINITE_FORCE); return
+            end if
+            iw(KW_HAVE_A) = 1; nf = nf + 1
+        end subroutine get_force
+
+        subroutine fail(code)
+            integer, intent(in) :: code
+            call fsym_kernel_abort(d, n, q, v, w, nslot, iw)
+            stat = code
+        end subroutine fail
+
+    end subroutine fsym_kernel_step_kepler
+
+    ! ---------------------------------------------------------------- stage arithmetic
+    ! Every path of the kernel updates the state through these four routines only.
+
+    !> Drift q <- q + s v (s = c h).
+    pure subroutine stage_drift(m, q, v, s)
+        integer, intent(in) :: m
+        real(wp), intent(inout) :: q(m)
+        real(wp), intent(in) :: v(m), s
+        q = q + s * v
+    end subroutine stage_drift
+
+    !> Kick v <- v + s a (s = c h).
+    pure subroutine stage_kick(m, v, a, s)
+        integer, intent(in) :: m
+        real(wp), intent(inout) :: v(m)
+        real(wp), intent(in) :: a(m), s
+        v = v + s * a
+    end subroutine stage_kick
+
+    !> Gradient kick v <- v + (s a + r g) (s = c h, r = u h^3).
+    pure subroutine stage_grad_kick(m, v, a, g, s, r)
+        integer, intent(in) :: m
+        real(wp), intent(inout) :: v(m)
+        real(wp), intent(in) :: a(m), g(m), s, r
+        v = v + (s * a + r * g)
+    end subroutine stage_grad_kick
+
+    !> Extrapolated point x <- q + s a (s = u h^2).
+    pure subroutine stage_shift(m, x, q, a, s)
+        integer, intent(in) :: m
+        real(wp), intent(out) :: x(m)
+        real(wp), intent(in) :: q(m), a(m), s
+        x = q + s * a
+    end subroutine stage_shift
 
     !> x <- x + s*y with Kahan compensation carried in e.
     pure subroutine add_compensated(m, x, e, s, y)

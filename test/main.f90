@@ -10,6 +10,7 @@ program fsym_tests
     use test_nbody, only: collect_nbody
     use test_legacy, only: collect_legacy
     use test_study, only: collect_study
+    use test_fastpath, only: collect_fastpath
     implicit none
     type(test_t), allocatable :: tests(:)
     character(len=:), allocatable :: err
@@ -19,7 +20,7 @@ program fsym_tests
     filter = ''
     if (command_argument_count() > 0) call get_command_argument(1, filter)
     tests = [collect_scheme(), collect_kepler(), collect_integrator(), collect_errors(), &
-             collect_nbody(), collect_legacy(), collect_study()]
+             collect_nbody(), collect_legacy(), collect_study(), collect_fastpath()]
     npass = 0; nfail = 0
     do k = 1, size(tests)
         if (len_trim(filter) > 0) then

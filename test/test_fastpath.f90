@@ -1,0 +1,112 @@
+!> The kernel's specialised Kepler path (taken by `integrator_t%step` for `kepler_model_t`)
+!> against the general reverse-communication path (taken for any extension of the model):
+!> bitwise the same states, the same counters, the same failures.
+module test_fastpath
+    use fsym
+    use testing
+    implicit none
+    private
+    public :: collect_fastpath
+
+    !> The Kepler model seen through an extension: the integrator takes the general path.
+    type, extends(kepler_model_t) :: wrapped_kepler_t
+    end type wrapped_kepler_t
+
+contains
+
+    function collect_fastpath() result(tests)
+        type(test_t), allocatable :: tests(:)
+        tests = [ &
+            new_test('fastpath: Kepler path bitwise equal to the general path', t_bitwise), &
+            new_test('fastpath: same failure and restored state as the general path', t_failure)]
+    end function collect_fastpath
+
+    subroutine t_bitwise(err)
+        character(len=:), allocatable, intent(out) :: err
+        character(len=8), parameter :: names(8) = [character(len=8) :: 'T2', 'FR', 'A', &
+            'A''', 'C', 'C''', 'A6', 'BM']
+        type(kepler_model_t) :: fast
+        type(wrapped_kepler_t) :: slow
+        integer, parameter :: nb = 150     ! more than one block of the Kepler path
+        type(integrator_t) :: i1, i2
+        real(wp) :: q1(3, nb), v1(3, nb), q2(3, nb), v2(3, nb), h
+        integer :: m, k, j, st
+        fast%mu = 1.3_wp; slow%mu = 1.3_wp
+        do m = 1, size(names)
+            call i1%init_by_name(trim(names(m)), fast, 3, nb, st)
+            call i2%init_by_name(trim(names(m)), slow, 3, nb, st)
+            call check(err, st == 0, 'init '//trim(names(m)))
+            do j = 1, nb
+                q1(:, j) = [1.0_wp + 0.01_wp * j, 0.02_wp * j, -0.1_wp]
+                v1(:, j) = [0.05_wp, 1.0_wp - 0.001_wp * j, 0.1_wp]
+            end do
+            q2 = q1; v2 = v1
+            h = 0.01_wp
+            do k = 1, 300
+                if (k == 150) h = -0.02_wp        ! a change of step and direction
+                if (k == 200) then                ! q moved behind the integrators' back
+                    q1(1, 1) = q1(1, 1) + 1.0e-3_wp; q2(1, 1) = q2(1, 1) + 1.0e-3_wp
+                end if
+                call i1%step(fast, q1, v1, h, st)
+                call i2%step(slow, q2, v2, h, st)
+            end do
+            call check(err, all(q1 == q2) .and. all(v1 == v2), &
+                       trim(names(m))//': states differ between the paths')
+            call check(err, i1%force_evaluations() == i2%force_evaluations() .and. &
+                       i1%gradient_evaluations() == i2%gradient_evaluations() .and. &
+                       i1%steps() == i2%steps(), trim(names(m))//': counters differ')
+        end do
+    end subroutine t_bitwise
+
+    subroutine t_failure(err)
+        character(len=:), allocatable, intent(out) :: err
+        type(kepler_model_t) :: fast
+        type(wrapped_kepler_t) :: slow
+        type(integrator_t) :: i1, i2
+        real(wp) :: q1(2, 1), v1(2, 1), q2(2, 1), v2(2, 1)
+        integer :: st1, st2
+        character(len=256) :: m1, m2
+        ! a drift of c h v lands exactly on the centre: the force there is not finite
+        call i1%init_by_name('FR', fast, 2, 1)
+        call i2%init_by_name('FR', slow, 2, 1)
+        q1(:, 1) = [0.0_wp, 0.0_wp]; v1(:, 1) = [0.0_wp, 0.0_wp]
+        q2 = q1; v2 = v1
+        m1 = ''; m2 = ''
+        call i1%step(fast, q1, v1, 0.1_wp, st1, m1)
+        call i2%step(slow, q2, v2, 0.1_wp, st2, m2)
+        call check(err, st1 == FSYM_ERR_NONFINITE_FORCE .and. st2 == st1, 'status')
+        call check(err, m1 == m2, 'messages differ: "'//trim(m1)//'" / "'//trim(m2)//'"')
+        call check(err, all(q1 == 0.0_wp) .and. all(v1 == 0.0_wp), 'state not restored')
+        call check(err, i1%steps() == 0 .and. i2%steps() == 0, 'failed step counted')
+        call i1%step(fast, q1, v1, 0.0_wp, st1, m1)
+        call i2%step(slow, q2, v2, 0.0_wp, st2, m2)
+        call check(err, st1 == FSYM_ERR_BAD_STEP .and. st2 == st1 .and. m1 == m2, 'zero step')
+        call many_bodies(err)
+    end subroutine t_failure
+
+    !> One body at the centre among 150 (the Kepler path works in blocks): the same failure,
+    !> every body restored.
+    subroutine many_bodies(err)
+        character(len=:), allocatable, intent(inout) :: err
+        integer, parameter :: nb = 150
+        type(kepler_model_t) :: fast
+        type(wrapped_kepler_t) :: slow
+        type(integrator_t) :: i1, i2
+        real(wp) :: q0(2, nb), v0(2, nb), q1(2, nb), v1(2, nb), q2(2, nb), v2(2, nb)
+        integer :: j, st1, st2
+        do j = 1, nb
+            q0(:, j) = [1.0_wp + 0.01_wp * j, 0.0_wp]
+            v0(:, j) = [0.0_wp, 1.0_wp]
+        end do
+        q0(:, 100) = 0.0_wp; v0(:, 100) = 0.0_wp
+        call i1%init_by_name('A', fast, 2, nb)
+        call i2%init_by_name('A', slow, 2, nb)
+        q1 = q0; v1 = v0; q2 = q0; v2 = v0
+        call i1%step(fast, q1, v1, 0.01_wp, st1)
+        call i2%step(slow, q2, v2, 0.01_wp, st2)
+        call check(err, st1 == FSYM_ERR_NONFINITE_FORCE .and. st2 == st1, 'many bodies: status')
+        call check(err, all(q1 == q0) .and. all(v1 == v0) .and. all(q2 == q0) .and. &
+                   all(v2 == v0), 'many bodies: state not restored')
+    end subroutine many_bodies
+
+end module test_fastpath
