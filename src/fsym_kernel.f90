@@ -358,6 +358,16 @@ contains
         m = d * n
         ia = iw(KW_MAP - 1 + SLOT_A); ig = iw(KW_MAP - 1 + SLOT_G)
         iqe = iw(KW_MAP - 1 + SLOT_QE); iae = iw(KW_MAP - 1 + SLOT_AE)
+        if (d == 2) then
+            call kepler_bodies_2d(nop, op, c, u, n, q, v, h, mu, w, nslot, ia, ig, iqe, iae, &
+                                  iw, rw, nf, ng, stat)
+            if (stat /= FSYM_SUCCESS) then
+                k = iw(KW_PC)
+                call fsym_kernel_abort(d, n, q, v, w, nslot, iw)
+                iw(KW_PC) = k
+            end if
+            return
+        end if
         ! every block starts from the same cache state and counts from the same counters
         have0 = iw(KW_HAVE_A:KW_HAVE_X); xshift0 = rw(KR_XSHIFT)
         nf0 = nf; ng0 = ng
@@ -440,8 +450,141 @@ contains
 
     end subroutine fsym_kernel_step_kepler
 
+    !> d = 2: one body after the other, its state and forces in scalars, with the
+    !> operations of `stage_*`, `kepler_field` and `kepler_field_gradient` element by
+    !> element (so bitwise the same). Every force computed is also stored in its slot, as
+    !> the general path leaves it; q(:, j), v(:, j) are written once body j succeeded.
+    subroutine kepler_bodies_2d(nop, op, c, u, n, q, v, h, mu, w, nslot, ia, ig, iqe, iae, &
+                                iw, rw, nf, ng, stat)
+        integer, intent(in) :: nop, op(nop), n, nslot, ia, ig, iqe, iae
+        real(wp), intent(in) :: c(nop), u(nop), h, mu
+        real(wp), intent(inout) :: q(2, n), v(2, n), w(2, n, nslot)
+        integer, intent(inout) :: iw(KERNEL_NIW)
+        real(wp), intent(inout) :: rw(KERNEL_NRW)
+        integer(ik), intent(inout) :: nf, ng
+        integer, intent(out) :: stat
+        integer :: j, k, hva, hvg, hvx, hva0, hvg0, hvx0
+        integer(ik) :: nf0, ng0
+        real(wp) :: q1, q2, v1, v2, a1, a2, g1, g2, x1, x2, e1, e2, r2, s, r, xs, xs0, shift
+        stat = FSYM_SUCCESS
+        nf0 = nf; ng0 = ng
+        hva0 = iw(KW_HAVE_A); hvg0 = iw(KW_HAVE_G); hvx0 = iw(KW_HAVE_X)
+        xs0 = rw(KR_XSHIFT)
+        hva = hva0; hvg = hvg0; hvx = hvx0; xs = xs0
+        do j = 1, n
+            hva = hva0; hvg = hvg0; hvx = hvx0; xs = xs0
+            nf = nf0; ng = ng0
+            q1 = q(1, j); q2 = q(2, j); v1 = v(1, j); v2 = v(2, j)
+            a1 = w(1, j, ia); a2 = w(2, j, ia)
+            if (hvg /= 0) then
+                g1 = w(1, j, ig); g2 = w(2, j, ig)
+            else
+                g1 = 0.0_wp; g2 = 0.0_wp
+            end if
+            if (hvx /= 0) then
+                e1 = w(1, j, iae); e2 = w(2, j, iae)
+            else
+                e1 = 0.0_wp; e2 = 0.0_wp
+            end if
+            do k = 1, nop
+                select case (op(k))
+                case (OP_DRIFT)
+                    s = c(k) * h
+                    q1 = q1 + s * v1
+                    q2 = q2 + s * v2
+                    hva = 0; hvg = 0; hvx = 0
+                case (OP_KICK)
+                    if (hva == 0) then
+                        if (.not. force2()) return
+                    end if
+                    s = c(k) * h
+                    v1 = v1 + s * a1
+                    v2 = v2 + s * a2
+                case (OP_GRAD_KICK)
+                    if (hva == 0) then
+                        if (.not. force2()) return
+                    end if
+                    if (hvg == 0) then
+                        r2 = q1**2 + q2**2
+                        s = 4.0_wp * mu / (r2 * sqrt(r2))
+                        g1 = s * a1
+                        g2 = s * a2
+                        w(1, j, ig) = g1; w(2, j, ig) = g2
+                        if (.not. (ieee_is_finite(g1) .and. ieee_is_finite(g2))) then
+                            call fail_at(k, FSYM_ERR_NONFINITE_FORCE); return
+                        end if
+                        hvg = 1; ng = ng + 1
+                    end if
+                    s = c(k) * h
+                    r = u(k) * h**3
+                    v1 = v1 + (s * a1 + r * g1)
+                    v2 = v2 + (s * a2 + r * g2)
+                case (OP_EXTRAP_KICK)
+                    if (hva == 0) then
+                        if (.not. force2()) return
+                    end if
+                    shift = u(k) * h * h
+                    if (hvx == 0 .or. xs /= shift) then
+                        x1 = q1 + shift * a1
+                        x2 = q2 + shift * a2
+                        w(1, j, iqe) = x1; w(2, j, iqe) = x2
+                        xs = shift
+                        r2 = x1**2 + x2**2
+                        s = -mu / (r2 * sqrt(r2))
+                        e1 = s * x1
+                        e2 = s * x2
+                        w(1, j, iae) = e1; w(2, j, iae) = e2
+                        if (.not. (ieee_is_finite(e1) .and. ieee_is_finite(e2))) then
+                            call fail_at(k, FSYM_ERR_NONFINITE_FORCE); return
+                        end if
+                        hvx = 1; nf = nf + 1
+                    end if
+                    s = c(k) * h
+                    v1 = v1 + s * e1
+                    v2 = v2 + s * e2
+                end select
+            end do
+            if (.not. (ieee_is_finite(q1) .and. ieee_is_finite(q2) .and. &
+                       ieee_is_finite(v1) .and. ieee_is_finite(v2))) then
+                call fail_at(nop + 1, FSYM_ERR_NONFINITE_STATE); return
+            end if
+            q(1, j) = q1; q(2, j) = q2; v(1, j) = v1; v(2, j) = v2
+        end do
+        iw(KW_HAVE_A) = hva; iw(KW_HAVE_G) = hvg; iw(KW_HAVE_X) = hvx
+        rw(KR_XSHIFT) = xs
+        iw(KW_PC) = nop + 1
+        if (hva /= 0) w(:, :, iw(KW_MAP - 1 + SLOT_QLAST)) = q
+        iw(KW_ACTIVE) = 0
+        iw(KW_REQ) = REQ_DONE
+
+    contains
+
+        !> a(q) of the body at (q1, q2) into (a1, a2) and SLOT_A; .false. after a failure.
+        logical function force2()
+            r2 = q1**2 + q2**2
+            s = -mu / (r2 * sqrt(r2))
+            a1 = s * q1
+            a2 = s * q2
+            w(1, j, ia) = a1; w(2, j, ia) = a2
+            force2 = ieee_is_finite(a1) .and. ieee_is_finite(a2)
+            if (.not. force2) then
+                call fail_at(k, FSYM_ERR_NONFINITE_FORCE); return
+            end if
+            hva = 1; nf = nf + 1
+        end function force2
+
+        !> Failure at stage kk (the caller restores the state).
+        subroutine fail_at(kk, code)
+            integer, intent(in) :: kk, code
+            iw(KW_PC) = kk
+            stat = code
+        end subroutine fail_at
+
+    end subroutine kepler_bodies_2d
+
     ! ---------------------------------------------------------------- stage arithmetic
-    ! Every path of the kernel updates the state through these four routines only.
+    ! The general path updates the state through these routines; the d = 2 Kepler path
+    ! (kepler_bodies_2d) repeats their operations element by element on scalars.
 
     !> Drift q <- q + s v (s = c h).
     pure subroutine stage_drift(m, q, v, s)
