@@ -351,7 +351,11 @@ contains
         if (iw(KW_COMP) /= 0) then
             stat = FSYM_ERR_BAD_REQUEST; return
         end if
-        call fsym_kernel_begin(d, n, q, v, h, w, nslot, iw, rw, stat)
+        if (d == 2) then
+            call begin_2d(n, q, v, h, w, nslot, iw, rw, stat)
+        else
+            call fsym_kernel_begin(d, n, q, v, h, w, nslot, iw, rw, stat)
+        end if
         if (stat /= FSYM_SUCCESS) then
             iw(KW_PC) = 0; return      ! rejected before the first stage
         end if
@@ -450,6 +454,41 @@ contains
 
     end subroutine fsym_kernel_step_kepler
 
+    !> `fsym_kernel_begin` for d = 2 without compensation, in one pass over the bodies on
+    !> scalars: the same checks in the same order, the same saved state and cache rule.
+    subroutine begin_2d(n, q, v, h, w, nslot, iw, rw, stat)
+        integer, intent(in) :: n, nslot
+        real(wp), intent(in) :: q(2, n), v(2, n), h
+        real(wp), intent(inout) :: w(2, n, nslot)
+        integer, intent(inout) :: iw(KERNEL_NIW)
+        real(wp), intent(inout) :: rw(KERNEL_NRW)
+        integer, intent(out) :: stat
+        integer :: j, iq0, iv0, il
+        logical :: fin, moved
+        if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
+            stat = FSYM_ERR_BAD_STEP; return
+        end if
+        iq0 = iw(KW_MAP - 1 + SLOT_Q0); iv0 = iw(KW_MAP - 1 + SLOT_V0)
+        il = iw(KW_MAP - 1 + SLOT_QLAST)
+        fin = .true.; moved = .false.
+        do j = 1, n
+            fin = fin .and. ieee_is_finite(q(1, j)) .and. ieee_is_finite(q(2, j)) .and. &
+                  ieee_is_finite(v(1, j)) .and. ieee_is_finite(v(2, j))
+            moved = moved .or. q(1, j) /= w(1, j, il) .or. q(2, j) /= w(2, j, il)
+            w(1, j, iq0) = q(1, j); w(2, j, iq0) = q(2, j)
+            w(1, j, iv0) = v(1, j); w(2, j, iv0) = v(2, j)
+        end do
+        if (.not. fin) then
+            stat = FSYM_ERR_NONFINITE_STATE; return
+        end if
+        if (iw(KW_HAVE_A) /= 0 .and. moved) call fsym_kernel_invalidate(iw)
+        rw(KR_H) = h
+        iw(KW_PC) = 1
+        iw(KW_REQ) = REQ_DONE
+        iw(KW_ACTIVE) = 1
+        stat = FSYM_SUCCESS
+    end subroutine begin_2d
+
     !> d = 2: one body after the other, its state and forces in scalars, with the
     !> operations of `stage_*`, `kepler_field` and `kepler_field_gradient` element by
     !> element (so bitwise the same). Every force computed is also stored in its slot, as
@@ -466,6 +505,8 @@ contains
         integer :: j, k, hva, hvg, hvx, hva0, hvg0, hvx0
         integer(ik) :: nf0, ng0
         real(wp) :: q1, q2, v1, v2, a1, a2, g1, g2, x1, x2, e1, e2, r2, s, r, xs, xs0, shift
+        real(wp) :: t3        ! r2 sqrt(r2) at the current q, when ht (shared by a and g)
+        logical :: ht
         stat = FSYM_SUCCESS
         nf0 = nf; ng0 = ng
         hva0 = iw(KW_HAVE_A); hvg0 = iw(KW_HAVE_G); hvx0 = iw(KW_HAVE_X)
@@ -475,6 +516,7 @@ contains
             hva = hva0; hvg = hvg0; hvx = hvx0; xs = xs0
             nf = nf0; ng = ng0
             q1 = q(1, j); q2 = q(2, j); v1 = v(1, j); v2 = v(2, j)
+            ht = .false.; t3 = 0.0_wp
             a1 = w(1, j, ia); a2 = w(2, j, ia)
             if (hvg /= 0) then
                 g1 = w(1, j, ig); g2 = w(2, j, ig)
@@ -492,7 +534,7 @@ contains
                     s = c(k) * h
                     q1 = q1 + s * v1
                     q2 = q2 + s * v2
-                    hva = 0; hvg = 0; hvx = 0
+                    hva = 0; hvg = 0; hvx = 0; ht = .false.
                 case (OP_KICK)
                     if (hva == 0) then
                         if (.not. force2()) return
@@ -505,8 +547,11 @@ contains
                         if (.not. force2()) return
                     end if
                     if (hvg == 0) then
-                        r2 = q1**2 + q2**2
-                        s = 4.0_wp * mu / (r2 * sqrt(r2))
+                        if (.not. ht) then
+                            r2 = q1**2 + q2**2
+                            t3 = r2 * sqrt(r2)
+                        end if
+                        s = 4.0_wp * mu / t3
                         g1 = s * a1
                         g2 = s * a2
                         w(1, j, ig) = g1; w(2, j, ig) = g2
@@ -562,7 +607,8 @@ contains
         !> a(q) of the body at (q1, q2) into (a1, a2) and SLOT_A; .false. after a failure.
         logical function force2()
             r2 = q1**2 + q2**2
-            s = -mu / (r2 * sqrt(r2))
+            t3 = r2 * sqrt(r2); ht = .true.
+            s = -mu / t3
             a1 = s * q1
             a2 = s * q2
             w(1, j, ia) = a1; w(2, j, ia) = a2
