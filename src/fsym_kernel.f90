@@ -529,6 +529,19 @@ contains
                 e1 = 0.0_wp; e2 = 0.0_wp
             end if
             do k = 1, nop
+                if (op(k) /= OP_DRIFT .and. hva == 0) then
+                    ! every kind of kick needs a(q) first
+                    r2 = q1**2 + q2**2
+                    t3 = r2 * sqrt(r2); ht = .true.
+                    s = -mu / t3
+                    a1 = s * q1
+                    a2 = s * q2
+                    w(1, j, ia) = a1; w(2, j, ia) = a2
+                    if (.not. (ieee_is_finite(a1) .and. ieee_is_finite(a2))) then
+                        iw(KW_PC) = k; stat = FSYM_ERR_NONFINITE_FORCE; return
+                    end if
+                    hva = 1; nf = nf + 1
+                end if
                 select case (op(k))
                 case (OP_DRIFT)
                     s = c(k) * h
@@ -536,16 +549,10 @@ contains
                     q2 = q2 + s * v2
                     hva = 0; hvg = 0; hvx = 0; ht = .false.
                 case (OP_KICK)
-                    if (hva == 0) then
-                        if (.not. force2()) return
-                    end if
                     s = c(k) * h
                     v1 = v1 + s * a1
                     v2 = v2 + s * a2
                 case (OP_GRAD_KICK)
-                    if (hva == 0) then
-                        if (.not. force2()) return
-                    end if
                     if (hvg == 0) then
                         if (.not. ht) then
                             r2 = q1**2 + q2**2
@@ -556,7 +563,7 @@ contains
                         g2 = s * a2
                         w(1, j, ig) = g1; w(2, j, ig) = g2
                         if (.not. (ieee_is_finite(g1) .and. ieee_is_finite(g2))) then
-                            call fail_at(k, FSYM_ERR_NONFINITE_FORCE); return
+                            iw(KW_PC) = k; stat = FSYM_ERR_NONFINITE_FORCE; return
                         end if
                         hvg = 1; ng = ng + 1
                     end if
@@ -565,9 +572,6 @@ contains
                     v1 = v1 + (s * a1 + r * g1)
                     v2 = v2 + (s * a2 + r * g2)
                 case (OP_EXTRAP_KICK)
-                    if (hva == 0) then
-                        if (.not. force2()) return
-                    end if
                     shift = u(k) * h * h
                     if (hvx == 0 .or. xs /= shift) then
                         x1 = q1 + shift * a1
@@ -580,7 +584,7 @@ contains
                         e2 = s * x2
                         w(1, j, iae) = e1; w(2, j, iae) = e2
                         if (.not. (ieee_is_finite(e1) .and. ieee_is_finite(e2))) then
-                            call fail_at(k, FSYM_ERR_NONFINITE_FORCE); return
+                            iw(KW_PC) = k; stat = FSYM_ERR_NONFINITE_FORCE; return
                         end if
                         hvx = 1; nf = nf + 1
                     end if
@@ -591,7 +595,7 @@ contains
             end do
             if (.not. (ieee_is_finite(q1) .and. ieee_is_finite(q2) .and. &
                        ieee_is_finite(v1) .and. ieee_is_finite(v2))) then
-                call fail_at(nop + 1, FSYM_ERR_NONFINITE_STATE); return
+                iw(KW_PC) = nop + 1; stat = FSYM_ERR_NONFINITE_STATE; return
             end if
             q(1, j) = q1; q(2, j) = q2; v(1, j) = v1; v(2, j) = v2
         end do
@@ -601,30 +605,6 @@ contains
         if (hva /= 0) w(:, :, iw(KW_MAP - 1 + SLOT_QLAST)) = q
         iw(KW_ACTIVE) = 0
         iw(KW_REQ) = REQ_DONE
-
-    contains
-
-        !> a(q) of the body at (q1, q2) into (a1, a2) and SLOT_A; .false. after a failure.
-        logical function force2()
-            r2 = q1**2 + q2**2
-            t3 = r2 * sqrt(r2); ht = .true.
-            s = -mu / t3
-            a1 = s * q1
-            a2 = s * q2
-            w(1, j, ia) = a1; w(2, j, ia) = a2
-            force2 = ieee_is_finite(a1) .and. ieee_is_finite(a2)
-            if (.not. force2) then
-                call fail_at(k, FSYM_ERR_NONFINITE_FORCE); return
-            end if
-            hva = 1; nf = nf + 1
-        end function force2
-
-        !> Failure at stage kk (the caller restores the state).
-        subroutine fail_at(kk, code)
-            integer, intent(in) :: kk, code
-            iw(KW_PC) = kk
-            stat = code
-        end subroutine fail_at
 
     end subroutine kepler_bodies_2d
 
