@@ -344,6 +344,9 @@ contains
         integer(ik), intent(inout) :: nf, ng          !! evaluation counters
         integer, intent(out) :: stat                  !! FSYM_SUCCESS or an error code
         integer, parameter :: KEPLER_BLOCK = 64
+        ! up to this many bodies (d = 2) one body after the other on scalars (the least
+        ! overhead per step); more bodies run stage by stage on blocks (the loops vectorise)
+        integer, parameter :: KEPLER_SCALAR_MAX = 4
         integer :: k, m, ia, ig, iqe, iae, j0, j1, mb, have0(3)
         integer(ik) :: nf0, ng0
         real(wp) :: shift, xshift0
@@ -362,7 +365,7 @@ contains
         m = d * n
         ia = iw(KW_MAP - 1 + SLOT_A); ig = iw(KW_MAP - 1 + SLOT_G)
         iqe = iw(KW_MAP - 1 + SLOT_QE); iae = iw(KW_MAP - 1 + SLOT_AE)
-        if (d == 2) then
+        if (d == 2 .and. n <= KEPLER_SCALAR_MAX) then
             call kepler_bodies_2d(nop, op, c, u, n, q, v, h, mu, w, nslot, ia, ig, iqe, iae, &
                                   iw, rw, nf, ng, stat)
             if (stat /= FSYM_SUCCESS) then

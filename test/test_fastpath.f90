@@ -27,15 +27,17 @@ contains
             'A''', 'C', 'C''', 'A6', 'BM']
         type(kepler_model_t) :: fast
         type(wrapped_kepler_t) :: slow
-        integer, parameter :: nb = 150     ! more than one block of the Kepler path
+        ! (d, bodies): a few planar bodies take the per-body scalar path, many bodies (more
+        ! than one block) the block path
+        integer, parameter :: dims(3) = [2, 2, 3], nbs(3) = [3, 150, 150]
         type(integrator_t) :: i1, i2
         real(wp), allocatable :: q1(:, :), v1(:, :), q2(:, :), v2(:, :)
         real(wp) :: h, x(3), y(3)
-        integer :: i, m, k, j, st, d
+        integer :: i, m, k, j, st, d, nb
         fast%mu = 1.3_wp; slow%mu = 1.3_wp
         ! d = 2 takes the per-body scalar path, d = 3 the block path
-        do i = 1, 2 * size(names)
-            d = 2 + (i - 1) / size(names)
+        do i = 1, size(dims) * size(names)
+            d = dims(1 + (i - 1) / size(names)); nb = nbs(1 + (i - 1) / size(names))
             m = 1 + mod(i - 1, size(names))
             call i1%init_by_name(trim(names(m)), fast, d, nb, st)
             call i2%init_by_name(trim(names(m)), slow, d, nb, st)
@@ -100,14 +102,15 @@ contains
                    'overflow: "'//trim(m1)//'" / "'//trim(m2)//'"')
         call check(err, all(q1(:, 1) == [1.0_wp, 0.0_wp]) .and. &
                    all(v1(:, 1) == [0.0_wp, 1.5e308_wp]), 'overflow: state not restored')
-        call many_bodies(err)
+        call many_bodies(err, 150, 100)
+        call many_bodies(err, 3, 2)
     end subroutine t_failure
 
-    !> One body at the centre among 150 (the Kepler path works in blocks): the same failure,
-    !> every body restored.
-    subroutine many_bodies(err)
+    !> Body jbad at the centre among nb (the block path for many bodies, the per-body path for
+    !> a few): the same failure, every body restored.
+    subroutine many_bodies(err, nb, jbad)
         character(len=:), allocatable, intent(inout) :: err
-        integer, parameter :: nb = 150
+        integer, intent(in) :: nb, jbad
         type(kepler_model_t) :: fast
         type(wrapped_kepler_t) :: slow
         type(integrator_t) :: i1, i2
@@ -117,7 +120,7 @@ contains
             q0(:, j) = [1.0_wp + 0.01_wp * j, 0.0_wp]
             v0(:, j) = [0.0_wp, 1.0_wp]
         end do
-        q0(:, 100) = 0.0_wp; v0(:, 100) = 0.0_wp
+        q0(:, jbad) = 0.0_wp; v0(:, jbad) = 0.0_wp
         call i1%init_by_name('A', fast, 2, nb)
         call i2%init_by_name('A', slow, 2, nb)
         q1 = q0; v1 = v0; q2 = q0; v2 = v0
