@@ -594,6 +594,8 @@ contains
                     s = c(k) * h
                     v1 = v1 + s * e1
                     v2 = v2 + s * e2
+                case default
+                    continue      ! a validated scheme has no other op codes
                 end select
             end do
             if (.not. (ieee_is_finite(q1) .and. ieee_is_finite(q2) .and. &
