@@ -327,9 +327,9 @@ contains
     !> independent, so all stages run on one block of `KEPLER_BLOCK` bodies after the other
     !> (the block stays in cache); up to `KEPLER_SCALAR_MAX` planar bodies run one after the
     !> other on scalars (`kepler_bodies_2d`, the same operations element by element). Not for
-    !> compensated runs (stat = FSYM_ERR_BAD_REQUEST: use the general path). On failure q and v are restored and iw(KW_PC) names the stage
-    !> that failed (0: rejected on entry; with several failing bodies it may be a later stage
-    !> than the general path names).
+    !> compensated runs (stat = FSYM_ERR_BAD_REQUEST: use the general path). On failure q and
+    !> v are restored and iw(KW_PC) names the stage that failed (0: rejected on entry; with
+    !> several failing bodies it may be a later stage than the general path names).
     subroutine fsym_kernel_step_kepler(nop, op, c, u, d, n, q, v, h, mu, w, nslot, iw, rw, &
                                        nf, ng, stat)
         integer, intent(in) :: nop                    !! number of stages
