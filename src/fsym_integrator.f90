@@ -142,16 +142,11 @@ contains
         if (size(q, 1) /= d .or. size(q, 2) /= n .or. size(v, 1) /= d .or. size(v, 2) /= n) then
             call fsym_report(FSYM_ERR_SHAPE, shape_text(d, n, q, v), stat, errmsg); return
         end if
-        if (self%needs_g) then
-            if (.not. model%has_gradient()) then
-                call fsym_report(FSYM_ERR_NO_GRADIENT, 'method '//self%sc%name// &
-                                 ': this model has no gradient term', stat, errmsg); return
-            end if
-        end if
         ! Specialised path for the library's Kepler model (exactly that type, not extensions of
         ! it, which may override the force): the kernel runs the whole step with the force
         ! called directly (no reverse communication, no dynamic dispatch per force); same
-        ! stage arithmetic, bitwise the same result as the general path below.
+        ! stage arithmetic, bitwise the same result as the general path below. That model has
+        ! the gradient term, so the check below is not needed here.
         if (.not. (present(recorder) .or. self%iw(KW_COMP) /= 0)) then
             select type (model)
             type is (kepler_model_t)
@@ -168,6 +163,12 @@ contains
                 if (present(stat)) stat = FSYM_SUCCESS
                 return
             end select
+        end if
+        if (self%needs_g) then
+            if (.not. model%has_gradient()) then
+                call fsym_report(FSYM_ERR_NO_GRADIENT, 'method '//self%sc%name// &
+                                 ': this model has no gradient term', stat, errmsg); return
+            end if
         end if
         call fsym_kernel_begin(d, n, q, v, h, self%w, self%nslot, self%iw, self%rw, st)
         if (st /= FSYM_SUCCESS) then

@@ -325,10 +325,11 @@ contains
     !> force-reuse rules, checks and counters, so the state is bitwise the state of
     !> `fsym_kernel_begin` + `fsym_kernel_resume` driven with that force. The bodies are
     !> independent, so all stages run on one block of `KEPLER_BLOCK` bodies after the other
-    !> (the block stays in cache). Not for compensated runs (stat = FSYM_ERR_BAD_REQUEST:
-    !> use the general path). On failure q and v are restored and iw(KW_PC) names the stage
-    !> that failed (0: rejected on entry; with several failing bodies it may be a later stage
-    !> than the general path names).
+    !> (the block stays in cache); up to `KEPLER_SCALAR_MAX` planar bodies run one after the
+    !> other on scalars (`kepler_bodies_2d`, the same operations element by element). Not for
+    !> compensated runs (stat = FSYM_ERR_BAD_REQUEST: use the general path). On failure q and
+    !> v are restored and iw(KW_PC) names the stage that failed (0: rejected on entry; with
+    !> several failing bodies it may be a later stage than the general path names).
     subroutine fsym_kernel_step_kepler(nop, op, c, u, d, n, q, v, h, mu, w, nslot, iw, rw, &
                                        nf, ng, stat)
         integer, intent(in) :: nop                    !! number of stages
@@ -344,6 +345,9 @@ contains
         integer(ik), intent(inout) :: nf, ng          !! evaluation counters
         integer, intent(out) :: stat                  !! FSYM_SUCCESS or an error code
         integer, parameter :: KEPLER_BLOCK = 64
+        ! up to this many bodies (d = 2) one body after the other on scalars (the least
+        ! overhead per step); more bodies run stage by stage on blocks (the loops vectorise)
+        integer, parameter :: KEPLER_SCALAR_MAX = 4
         integer :: k, m, ia, ig, iqe, iae, j0, j1, mb, have0(3)
         integer(ik) :: nf0, ng0
         real(wp) :: shift, xshift0
@@ -351,13 +355,27 @@ contains
         if (iw(KW_COMP) /= 0) then
             stat = FSYM_ERR_BAD_REQUEST; return
         end if
-        call fsym_kernel_begin(d, n, q, v, h, w, nslot, iw, rw, stat)
+        if (d == 2) then
+            call begin_2d(n, q, v, h, w, nslot, iw, rw, stat)
+        else
+            call fsym_kernel_begin(d, n, q, v, h, w, nslot, iw, rw, stat)
+        end if
         if (stat /= FSYM_SUCCESS) then
             iw(KW_PC) = 0; return      ! rejected before the first stage
         end if
         m = d * n
         ia = iw(KW_MAP - 1 + SLOT_A); ig = iw(KW_MAP - 1 + SLOT_G)
         iqe = iw(KW_MAP - 1 + SLOT_QE); iae = iw(KW_MAP - 1 + SLOT_AE)
+        if (d == 2 .and. n <= KEPLER_SCALAR_MAX) then
+            call kepler_bodies_2d(nop, op, c, u, n, q, v, h, mu, w, nslot, ia, ig, iqe, iae, &
+                                  iw, rw, nf, ng, stat)
+            if (stat /= FSYM_SUCCESS) then
+                k = iw(KW_PC)
+                call fsym_kernel_abort(d, n, q, v, w, nslot, iw)
+                iw(KW_PC) = k
+            end if
+            return
+        end if
         ! every block starts from the same cache state and counts from the same counters
         have0 = iw(KW_HAVE_A:KW_HAVE_X); xshift0 = rw(KR_XSHIFT)
         nf0 = nf; ng0 = ng
@@ -440,8 +458,165 @@ contains
 
     end subroutine fsym_kernel_step_kepler
 
+    !> `fsym_kernel_begin` for d = 2 without compensation, in one pass over the bodies on
+    !> scalars: the same checks in the same order, the same saved state and cache rule.
+    subroutine begin_2d(n, q, v, h, w, nslot, iw, rw, stat)
+        integer, intent(in) :: n, nslot
+        real(wp), intent(in) :: q(2, n), v(2, n), h
+        real(wp), intent(inout) :: w(2, n, nslot)
+        integer, intent(inout) :: iw(KERNEL_NIW)
+        real(wp), intent(inout) :: rw(KERNEL_NRW)
+        integer, intent(out) :: stat
+        integer :: j, iq0, iv0, il
+        logical :: fin, moved
+        if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
+            stat = FSYM_ERR_BAD_STEP; return
+        end if
+        iq0 = iw(KW_MAP - 1 + SLOT_Q0); iv0 = iw(KW_MAP - 1 + SLOT_V0)
+        il = iw(KW_MAP - 1 + SLOT_QLAST)
+        fin = .true.; moved = .false.
+        do j = 1, n
+            fin = fin .and. ieee_is_finite(q(1, j)) .and. ieee_is_finite(q(2, j)) .and. &
+                  ieee_is_finite(v(1, j)) .and. ieee_is_finite(v(2, j))
+            moved = moved .or. q(1, j) /= w(1, j, il) .or. q(2, j) /= w(2, j, il)
+            w(1, j, iq0) = q(1, j); w(2, j, iq0) = q(2, j)
+            w(1, j, iv0) = v(1, j); w(2, j, iv0) = v(2, j)
+        end do
+        if (.not. fin) then
+            stat = FSYM_ERR_NONFINITE_STATE; return
+        end if
+        if (iw(KW_HAVE_A) /= 0 .and. moved) call fsym_kernel_invalidate(iw)
+        rw(KR_H) = h
+        iw(KW_PC) = 1
+        iw(KW_REQ) = REQ_DONE
+        iw(KW_ACTIVE) = 1
+        stat = FSYM_SUCCESS
+    end subroutine begin_2d
+
+    !> d = 2: one body after the other, its state and forces in scalars, with the
+    !> operations of `stage_*`, `kepler_field` and `kepler_field_gradient` element by
+    !> element (so bitwise the same). Every force computed is also stored in its slot, as
+    !> the general path leaves it; q(:, j), v(:, j) are written once body j succeeded.
+    subroutine kepler_bodies_2d(nop, op, c, u, n, q, v, h, mu, w, nslot, ia, ig, iqe, iae, &
+                                iw, rw, nf, ng, stat)
+        integer, intent(in) :: nop, op(nop), n, nslot, ia, ig, iqe, iae
+        real(wp), intent(in) :: c(nop), u(nop), h, mu
+        real(wp), intent(inout) :: q(2, n), v(2, n), w(2, n, nslot)
+        integer, intent(inout) :: iw(KERNEL_NIW)
+        real(wp), intent(inout) :: rw(KERNEL_NRW)
+        integer(ik), intent(inout) :: nf, ng
+        integer, intent(out) :: stat
+        integer :: j, k, hva, hvg, hvx, hva0, hvg0, hvx0
+        integer(ik) :: nf0, ng0
+        real(wp) :: q1, q2, v1, v2, a1, a2, g1, g2, x1, x2, e1, e2, r2, s, r, xs, xs0, shift
+        real(wp) :: t3        ! r2 sqrt(r2) at the current q, when ht (shared by a and g)
+        logical :: ht
+        stat = FSYM_SUCCESS
+        nf0 = nf; ng0 = ng
+        hva0 = iw(KW_HAVE_A); hvg0 = iw(KW_HAVE_G); hvx0 = iw(KW_HAVE_X)
+        xs0 = rw(KR_XSHIFT)
+        hva = hva0; hvg = hvg0; hvx = hvx0; xs = xs0
+        do j = 1, n
+            hva = hva0; hvg = hvg0; hvx = hvx0; xs = xs0
+            nf = nf0; ng = ng0
+            q1 = q(1, j); q2 = q(2, j); v1 = v(1, j); v2 = v(2, j)
+            ht = .false.; t3 = 0.0_wp
+            a1 = w(1, j, ia); a2 = w(2, j, ia)
+            if (hvg /= 0) then
+                g1 = w(1, j, ig); g2 = w(2, j, ig)
+            else
+                g1 = 0.0_wp; g2 = 0.0_wp
+            end if
+            if (hvx /= 0) then
+                e1 = w(1, j, iae); e2 = w(2, j, iae)
+            else
+                e1 = 0.0_wp; e2 = 0.0_wp
+            end if
+            do k = 1, nop
+                if (op(k) /= OP_DRIFT .and. hva == 0) then
+                    ! every kind of kick needs a(q) first
+                    r2 = q1**2 + q2**2
+                    t3 = r2 * sqrt(r2); ht = .true.
+                    s = -mu / t3
+                    a1 = s * q1
+                    a2 = s * q2
+                    w(1, j, ia) = a1; w(2, j, ia) = a2
+                    if (.not. (ieee_is_finite(a1) .and. ieee_is_finite(a2))) then
+                        iw(KW_PC) = k; stat = FSYM_ERR_NONFINITE_FORCE; return
+                    end if
+                    hva = 1; nf = nf + 1
+                end if
+                select case (op(k))
+                case (OP_DRIFT)
+                    s = c(k) * h
+                    q1 = q1 + s * v1
+                    q2 = q2 + s * v2
+                    hva = 0; hvg = 0; hvx = 0; ht = .false.
+                case (OP_KICK)
+                    s = c(k) * h
+                    v1 = v1 + s * a1
+                    v2 = v2 + s * a2
+                case (OP_GRAD_KICK)
+                    if (hvg == 0) then
+                        if (.not. ht) then
+                            r2 = q1**2 + q2**2
+                            t3 = r2 * sqrt(r2)
+                        end if
+                        s = 4.0_wp * mu / t3
+                        g1 = s * a1
+                        g2 = s * a2
+                        w(1, j, ig) = g1; w(2, j, ig) = g2
+                        if (.not. (ieee_is_finite(g1) .and. ieee_is_finite(g2))) then
+                            iw(KW_PC) = k; stat = FSYM_ERR_NONFINITE_FORCE; return
+                        end if
+                        hvg = 1; ng = ng + 1
+                    end if
+                    s = c(k) * h
+                    r = u(k) * h**3
+                    v1 = v1 + (s * a1 + r * g1)
+                    v2 = v2 + (s * a2 + r * g2)
+                case (OP_EXTRAP_KICK)
+                    shift = u(k) * h * h
+                    if (hvx == 0 .or. xs /= shift) then
+                        x1 = q1 + shift * a1
+                        x2 = q2 + shift * a2
+                        w(1, j, iqe) = x1; w(2, j, iqe) = x2
+                        xs = shift
+                        r2 = x1**2 + x2**2
+                        s = -mu / (r2 * sqrt(r2))
+                        e1 = s * x1
+                        e2 = s * x2
+                        w(1, j, iae) = e1; w(2, j, iae) = e2
+                        if (.not. (ieee_is_finite(e1) .and. ieee_is_finite(e2))) then
+                            iw(KW_PC) = k; stat = FSYM_ERR_NONFINITE_FORCE; return
+                        end if
+                        hvx = 1; nf = nf + 1
+                    end if
+                    s = c(k) * h
+                    v1 = v1 + s * e1
+                    v2 = v2 + s * e2
+                case default
+                    continue      ! a validated scheme has no other op codes
+                end select
+            end do
+            if (.not. (ieee_is_finite(q1) .and. ieee_is_finite(q2) .and. &
+                       ieee_is_finite(v1) .and. ieee_is_finite(v2))) then
+                iw(KW_PC) = nop + 1; stat = FSYM_ERR_NONFINITE_STATE; return
+            end if
+            q(1, j) = q1; q(2, j) = q2; v(1, j) = v1; v(2, j) = v2
+        end do
+        iw(KW_HAVE_A) = hva; iw(KW_HAVE_G) = hvg; iw(KW_HAVE_X) = hvx
+        rw(KR_XSHIFT) = xs
+        iw(KW_PC) = nop + 1
+        if (hva /= 0) w(:, :, iw(KW_MAP - 1 + SLOT_QLAST)) = q
+        iw(KW_ACTIVE) = 0
+        iw(KW_REQ) = REQ_DONE
+
+    end subroutine kepler_bodies_2d
+
     ! ---------------------------------------------------------------- stage arithmetic
-    ! Every path of the kernel updates the state through these four routines only.
+    ! The general path updates the state through these routines; the d = 2 Kepler path
+    ! (kepler_bodies_2d) repeats their operations element by element on scalars.
 
     !> Drift q <- q + s v (s = c h).
     pure subroutine stage_drift(m, q, v, s)

@@ -27,18 +27,27 @@ contains
             'A''', 'C', 'C''', 'A6', 'BM']
         type(kepler_model_t) :: fast
         type(wrapped_kepler_t) :: slow
-        integer, parameter :: nb = 150     ! more than one block of the Kepler path
+        ! (d, bodies): a few planar bodies take the per-body scalar path, many bodies (more
+        ! than one block) the block path
+        integer, parameter :: dims(3) = [2, 2, 3], nbs(3) = [3, 150, 150]
         type(integrator_t) :: i1, i2
-        real(wp) :: q1(3, nb), v1(3, nb), q2(3, nb), v2(3, nb), h
-        integer :: m, k, j, st
+        real(wp), allocatable :: q1(:, :), v1(:, :), q2(:, :), v2(:, :)
+        real(wp) :: h, x(3), y(3)
+        integer :: i, m, k, j, st, d, nb
         fast%mu = 1.3_wp; slow%mu = 1.3_wp
-        do m = 1, size(names)
-            call i1%init_by_name(trim(names(m)), fast, 3, nb, st)
-            call i2%init_by_name(trim(names(m)), slow, 3, nb, st)
+        ! d = 2 takes the per-body scalar path, d = 3 the block path
+        do i = 1, size(dims) * size(names)
+            d = dims(1 + (i - 1) / size(names)); nb = nbs(1 + (i - 1) / size(names))
+            m = 1 + mod(i - 1, size(names))
+            call i1%init_by_name(trim(names(m)), fast, d, nb, st)
+            call i2%init_by_name(trim(names(m)), slow, d, nb, st)
             call check(err, st == 0, 'init '//trim(names(m)))
+            if (allocated(q1)) deallocate (q1, v1)
+            allocate (q1(d, nb), v1(d, nb))
             do j = 1, nb
-                q1(:, j) = [1.0_wp + 0.01_wp * j, 0.02_wp * j, -0.1_wp]
-                v1(:, j) = [0.05_wp, 1.0_wp - 0.001_wp * j, 0.1_wp]
+                x = [1.0_wp + 0.01_wp * j, 0.02_wp * j, -0.1_wp]
+                y = [0.05_wp, 1.0_wp - 0.001_wp * j, 0.1_wp]
+                q1(:, j) = x(1:d); v1(:, j) = y(1:d)
             end do
             q2 = q1; v2 = v1
             h = 0.01_wp
@@ -81,14 +90,27 @@ contains
         call i1%step(fast, q1, v1, 0.0_wp, st1, m1)
         call i2%step(slow, q2, v2, 0.0_wp, st2, m2)
         call check(err, st1 == FSYM_ERR_BAD_STEP .and. st2 == st1 .and. m1 == m2, 'zero step')
-        call many_bodies(err)
+        ! T2 (drift-kick-drift): the force at the half step is finite (|q| overflows to Inf,
+        ! a = -0), the last drift overflows: the final state is not finite
+        call i1%init_by_name('T2', fast, 2, 1)
+        call i2%init_by_name('T2', slow, 2, 1)
+        q1(:, 1) = [1.0_wp, 0.0_wp]; v1(:, 1) = [0.0_wp, 1.5e308_wp]
+        q2 = q1; v2 = v1
+        call i1%step(fast, q1, v1, 2.0_wp, st1, m1)
+        call i2%step(slow, q2, v2, 2.0_wp, st2, m2)
+        call check(err, st1 == FSYM_ERR_NONFINITE_STATE .and. st2 == st1 .and. m1 == m2, &
+                   'overflow: "'//trim(m1)//'" / "'//trim(m2)//'"')
+        call check(err, all(q1(:, 1) == [1.0_wp, 0.0_wp]) .and. &
+                   all(v1(:, 1) == [0.0_wp, 1.5e308_wp]), 'overflow: state not restored')
+        call many_bodies(err, 150, 100)
+        call many_bodies(err, 3, 2)
     end subroutine t_failure
 
-    !> One body at the centre among 150 (the Kepler path works in blocks): the same failure,
-    !> every body restored.
-    subroutine many_bodies(err)
+    !> Body jbad at the centre among nb (the block path for many bodies, the per-body path for
+    !> a few): the same failure, every body restored.
+    subroutine many_bodies(err, nb, jbad)
         character(len=:), allocatable, intent(inout) :: err
-        integer, parameter :: nb = 150
+        integer, intent(in) :: nb, jbad
         type(kepler_model_t) :: fast
         type(wrapped_kepler_t) :: slow
         type(integrator_t) :: i1, i2
@@ -98,7 +120,7 @@ contains
             q0(:, j) = [1.0_wp + 0.01_wp * j, 0.0_wp]
             v0(:, j) = [0.0_wp, 1.0_wp]
         end do
-        q0(:, 100) = 0.0_wp; v0(:, 100) = 0.0_wp
+        q0(:, jbad) = 0.0_wp; v0(:, jbad) = 0.0_wp
         call i1%init_by_name('A', fast, 2, nb)
         call i2%init_by_name('A', slow, 2, nb)
         q1 = q0; v1 = v0; q2 = q0; v2 = v0
