@@ -85,11 +85,13 @@ contains
         close (u)
         if (n0 < 2 .or. nr /= n0 .or. .not. (dat%g > 0.0_wp .and. dat%t_end > 0.0_wp)) then
             call fsym_report(FSYM_ERR_IO, trim(path)//': need G, t_end and matching body lists', &
-                             stat, errmsg); return
+                             stat, errmsg)
+            return
         end if
         if (any(nm(1:n0) /= nref(1:nr))) then
             call fsym_report(FSYM_ERR_IO, trim(path)//': reference bodies in another order', &
-                             stat, errmsg); return
+                             stat, errmsg)
+            return
         end if
         dat%n = n0
         dat%name = nm(1:n0)

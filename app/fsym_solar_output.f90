@@ -104,15 +104,19 @@ contains
             if (stat /= FSYM_SUCCESS) exit
             g = 'methods/'//trim(res%methods(km))//'/'
             call f%write(g//'phase_space_error', res%err_phase(km, :), stat, errmsg)
-            if (stat == FSYM_SUCCESS) &
-                call f%write(g//'max_position_error', res%err_q(km, :), stat, errmsg)
-            if (stat == FSYM_SUCCESS) &
-                call f%write(g//'max_relative_energy_error', res%err_energy(km, :), stat, errmsg)
+            if (stat == FSYM_SUCCESS) then
+              call f%write(g//'max_position_error', res%err_q(km, :), stat, errmsg)
+            end if
+            if (stat == FSYM_SUCCESS) then
+              call f%write(g//'max_relative_energy_error', res%err_energy(km, :), stat, errmsg)
+            end if
             if (stat == FSYM_SUCCESS) call f%write(g//'seconds', res%seconds(km, :), stat, errmsg)
-            if (stat == FSYM_SUCCESS) &
-                call f%write(g//'force_evaluations', res%nforce(km, :), stat, errmsg)
-            if (stat == FSYM_SUCCESS) &
-                call f%write(g//'gradient_evaluations', res%ngrad(km, :), stat, errmsg)
+            if (stat == FSYM_SUCCESS) then
+              call f%write(g//'force_evaluations', res%nforce(km, :), stat, errmsg)
+            end if
+            if (stat == FSYM_SUCCESS) then
+              call f%write(g//'gradient_evaluations', res%ngrad(km, :), stat, errmsg)
+            end if
             if (stat == FSYM_SUCCESS) call f%write(g//'q_end', res%q_end(:, :, km, :), stat, errmsg)
             if (stat == FSYM_SUCCESS) call f%write(g//'v_end', res%v_end(:, :, km, :), stat, errmsg)
         end do

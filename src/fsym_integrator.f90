@@ -136,7 +136,8 @@ contains
 
         if (.not. self%ready) then
             call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'integrator_t%step before init', stat, &
-                             errmsg); return
+                             errmsg)
+            return
         end if
         call self%dims(d, n)
         if (size(q, 1) /= d .or. size(q, 2) /= n .or. size(v, 1) /= d .or. size(v, 2) /= n) then
@@ -167,7 +168,8 @@ contains
         if (self%needs_g) then
             if (.not. model%has_gradient()) then
                 call fsym_report(FSYM_ERR_NO_GRADIENT, 'method '//self%sc%name// &
-                                 ': this model has no gradient term', stat, errmsg); return
+                                 ': this model has no gradient term', stat, errmsg)
+                return
             end if
         end if
         call fsym_kernel_begin(d, n, q, v, h, self%w, self%nslot, self%iw, self%rw, st)
@@ -194,6 +196,8 @@ contains
                 call model%acceleration(self%w(:, :, iqe), self%w(:, :, iae), mst)
                 if (present(recorder)) call recorder%record(istep, self%iw(KW_PC), &
                                                             EVAL_EXTRAPOLATED, self%w(:, :, iqe))
+            case default
+                ! nothing else can occur here
             end select
             if (mst /= 0) then
                 call fsym_kernel_abort(d, n, q, v, self%w, self%nslot, self%iw)

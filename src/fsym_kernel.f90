@@ -239,6 +239,8 @@ contains
                 call fail(FSYM_ERR_NONFINITE_FORCE); return
             end if
             iw(KW_HAVE_X) = 1; nf = nf + 1
+        case default
+            ! nothing else can occur here
         end select
         iw(KW_REQ) = REQ_DONE
 
@@ -291,6 +293,8 @@ contains
                 else
                     call stage_kick(d * n, v, w(:, :, iae), c(k) * h)
                 end if
+            case default
+                ! nothing else can occur here
             end select
             iw(KW_PC) = k + 1
         end do
@@ -428,6 +432,8 @@ contains
                         iw(KW_HAVE_X) = 1; nf = nf + 1
                     end if
                     call stage_kick(mb, v(:, j0:j1), w(:, j0:j1, iae), c(k) * h)
+                case default
+                    ! nothing else can occur here
                 end select
             end do
         end do

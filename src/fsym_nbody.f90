@@ -61,11 +61,13 @@ contains
         end if
         if (.not. (all(m > 0.0_wp) .and. all(m <= huge(m)))) then
             call fsym_report(FSYM_ERR_BAD_PARAMETER, 'nbody: masses must be positive and finite', &
-                             stat, errmsg); return
+                             stat, errmsg)
+            return
         end if
         if (.not. (g > 0.0_wp .and. g <= huge(g) .and. e >= 0.0_wp .and. e <= huge(e))) then
             call fsym_report(FSYM_ERR_BAD_PARAMETER, 'nbody: need G > 0 and eps >= 0, finite', &
-                             stat, errmsg); return
+                             stat, errmsg)
+            return
         end if
         self%m = m
         self%g = g

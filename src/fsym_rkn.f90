@@ -64,7 +64,8 @@ contains
         call self%dims(d, n)
         if (size(q, 1) /= d .or. size(q, 2) /= n .or. size(v, 1) /= d .or. size(v, 2) /= n) then
             call fsym_report(FSYM_ERR_SHAPE, 'q and v must have the shape given to init', &
-                             stat, errmsg); return
+                             stat, errmsg)
+            return
         end if
         if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
             call fsym_report(FSYM_ERR_BAD_STEP, 'RKN', stat, errmsg); return

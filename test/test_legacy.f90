@@ -16,7 +16,7 @@ module test_legacy
     integer, parameter :: nb = 6, nsteps = 100
     real(wp), parameter :: gconst = 2.95912208286e-4_wp, hstep = 10.0_wp
     ! a Sun and five planets on near-circular, slightly inclined orbits (set by make_system)
-    real(wp), save :: mass(nb), x0(3, nb), v0(3, nb)
+    real(wp) :: mass(nb), x0(3, nb), v0(3, nb)
     character(len=4), parameter :: methods(6) = [character(len=4) :: 'FR', 'A', 'A''', 'C', &
                                                  'A6', 'BM']
 
