@@ -13,6 +13,8 @@ module fsym
     use fsym_models
     use fsym_trace
     use fsym_analysis
+    use fsym_stability
+    use fsym_fpu
     implicit none
     public
 
