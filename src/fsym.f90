@@ -15,6 +15,7 @@ module fsym
     use fsym_analysis
     use fsym_stability
     use fsym_fpu
+    use fsym_stability_runs
     implicit none
     public
 

@@ -115,8 +115,9 @@ contains
                 call fsym_stability_interval(s, xs, xnext=xn)
             end if
             ! just above: inside the first instability window, however narrow
-            call grow(names(k), 0.99_wp * xs, below)
-            call grow(names(k), xs + min(0.01_wp * xs, 0.5_wp * (xn - xs)), above)
+            call fsym_oscillator_growth(names(k), 0.99_wp * xs, 20000, below)
+            call fsym_oscillator_growth(names(k), xs + min(0.01_wp * xs, 0.5_wp * (xn - xs)), &
+                                        20000, above)
             write (line, '(a10,a,f9.6,a,es9.2,a,es9.2)') names(k), ' x* =', xs, &
                 '  growth below', below, ' above', above
             call note(trim(line))
@@ -124,29 +125,6 @@ contains
             call check(err, above > 1.0e6_wp, 'not growing above x*: '//trim(names(k)))
         end do
     end subroutine t_cross
-
-    !> max |z| / |z0| over 20000 steps of the oscillator at h = x (huge when it overflows).
-    subroutine grow(name, x, factor)
-        character(len=*), intent(in) :: name
-        real(wp), intent(in) :: x
-        real(wp), intent(out) :: factor
-        type(oscillator_model_t) :: osc
-        class(stepper_t), allocatable :: s
-        real(wp) :: q(1, 1), v(1, 1)
-        integer :: k, st
-        character(len=256) :: msg
-        call fsym_new_stepper(name, osc, 1, 1, s, st, msg)
-        q = 1.0_wp; v = 0.0_wp
-        factor = 1.0_wp
-        do k = 1, 20000
-            call s%step(osc, q, v, x, st, msg)
-            if (st /= 0) then
-                factor = huge(1.0_wp); return
-            end if
-            factor = max(factor, sqrt(q(1, 1)**2 + v(1, 1)**2))
-            if (factor > 1.0e12_wp) return
-        end do
-    end subroutine grow
 
     subroutine t_chain(err)
         character(len=:), allocatable, intent(out) :: err
