@@ -25,7 +25,8 @@ module fsym_stability_runs
         integer :: stat = FSYM_SUCCESS       !! the stepper's status when refused
         character(len=256) :: msg = ''       !! the stepper's message when refused
         integer(ik) :: steps = 0             !! steps completed
-        real(wp) :: max_de = 0.0_wp          !! max |E - E0|/|E0| over every step
+        real(wp) :: max_de = 0.0_wp          !! max |E - E0|/|E0| over every step; -1 when E0
+                                             !! is not finite (a start at r = 0)
         real(wp) :: max_dl = 0.0_wp          !! max |L - L0|/|L0| over every step
         real(wp) :: time = 0.0_wp            !! stepper time at the end
         logical :: finite = .true.           !! final state finite
@@ -42,7 +43,7 @@ contains
         character(len=:), allocatable :: text
         select case (outcome)
         case (RUN_OK); text = 'ok'
-        case (RUN_ENERGY); text = '|dE/E| > 1'
+        case (RUN_ENERGY); text = 'abs(dE/E) > 1'
         case (RUN_ESCAPE); text = 'escape (E >= 0)'
         case (RUN_REFUSED); text = 'refused'
         case default; text = 'unknown'
@@ -78,7 +79,8 @@ contains
 
     !> Integrate the Kepler orbit (mu = 1, a = 1, period 2 pi) from (q0, v0) with the method
     !> `name`, `nper` steps per period, for `nperiods` periods, checking E and L after every
-    !> step. Stops at the first breakdown. `de_period(k)`/`dl_period(k)`, if present, receive
+    !> step. Stops at the first breakdown. A start where E0 is not finite (r = 0) skips the
+    !> energy checks (max_de = -1) and only watches the stepper's status. `de_period(k)`/`dl_period(k)`, if present, receive
     !> the signed relative errors at the end of period k (NaN-free: 0 after a breakdown).
     subroutine fsym_kepler_run(name, q0, v0, nper, nperiods, run, de_period, dl_period)
         character(len=*), intent(in) :: name                 !! method label
@@ -91,6 +93,7 @@ contains
         type(kepler_model_t) :: kep
         class(stepper_t), allocatable :: s
         real(wp) :: q(2, 1), v(2, 1), h, e0, l0, e, l, de, dl
+        de = 0.0_wp; dl = 0.0_wp
         integer(ik) :: k, p
         integer :: st
         character(len=256) :: msg
@@ -111,12 +114,16 @@ contains
                     run%outcome = RUN_REFUSED; run%stat = st; run%msg = msg
                     exit
                 end if
-                e = kepler_energy(q(:, 1), v(:, 1))
                 l = q(1, 1) * v(2, 1) - q(2, 1) * v(1, 1)
-                de = (e - e0) / abs(e0)
                 dl = (l - l0) / abs(l0)
+                if (abs(l0) > 0.0_wp) run%max_dl = max(run%max_dl, abs(dl))
+                if (.not. (abs(e0) <= huge(1.0_wp))) then
+                    run%max_de = -1.0_wp
+                    cycle
+                end if
+                e = kepler_energy(q(:, 1), v(:, 1))
+                de = (e - e0) / abs(e0)
                 run%max_de = max(run%max_de, abs(de))
-                run%max_dl = max(run%max_dl, abs(dl))
                 if (e >= 0.0_wp) then
                     run%outcome = RUN_ESCAPE; exit
                 else if (abs(de) > 1.0_wp) then
