@@ -234,8 +234,9 @@ contains
             if (j > 3 .and. j + 3 <= n) then
                 if (err(j - 3) > 0.0_wp .and. err(j + 3) > 0.0_wp) then
                     ref = sqrt(err(j - 3) * err(j + 3))
-                    if (err(j) > 10.0_wp * ref .and. err(j) >= maxval(err(j - 2:j + 2))) &
+                    if (err(j) > 10.0_wp * ref .and. err(j) >= maxval(err(j - 2:j + 2))) then
                         flag(j) = .true.
+                    end if
                 end if
             end if
         end do
@@ -270,8 +271,9 @@ contains
             call fsym_kepler_run(trim(names(k)), q0, v0, 1000_ik, 1_ik, near(2, k))
             q0 = [1.0_wp, 0.0_wp]; v0 = [0.0_wp, 0.0_wp]
             call fsym_kepler_run(trim(names(k)), q0, v0, 1000_ik, 1_ik, near(3, k))
-            if (near(1, k)%outcome == RUN_OK .and. .not. near(1, k)%finite) &
+            if (any(near(:, k)%outcome == RUN_OK .and. .not. near(:, k)%finite)) then
                 call die('silent NaN: '//trim(names(k)))
+            end if
         end do
     end subroutine section_near_collision
 
@@ -367,7 +369,8 @@ contains
             'bisection). For RKN (not a splitting) x* is where the spectral radius of its step '// &
             'map (dgeev) first exceeds 1 + 1e-6. "evals" counts forces plus gradients per '// &
             'step; x*/evals is the fair comparison at equal work. "window end": where |trace| '// &
-            '< 2 again after x* (a narrow instability window when close to x*). '// &
+            '< 2 again after x* (a narrow instability window when close to x*; - : none up to '// &
+            'x = 40). '// &
             'The last two columns integrate the oscillator 20000 steps at 0.99 x* and just '// &
             'above x* (inside the window) and give max |z|/|z0|: bounded below, '// &
             'growing above (1e12 = stopped at overflow guard).', '', &
@@ -397,9 +400,10 @@ contains
             'frequencies by dsyev: omega_min = '//rfmt(chain_omega(1), 'es12.5')// &
             ', omega_max = '//rfmt(chain_omega(nchain), 'es12.5')//'. The one-step map '// &
             '(16x16) of each method is built by stepping the identity columns '// &
-            '(`fsym_linear_step_map`), its spectral radius by dgeev; h* is the largest step with '// &
-            'spectral radius <= 1 + 1e-6 (2000-point scan up to 1.25 x*/omega_max, fine enough '// &
-            'for the narrowest instability window, then bisection). Prediction: h* = x*/omega_max, '// &
+            '(`fsym_linear_step_map`), its spectral radius by dgeev; h* is the largest step '// &
+            'with spectral radius <= 1 + 1e-6 (2000-point scan up to 1.25 x*/omega_max, fine '// &
+            'enough for the narrowest instability window, then bisection). '// &
+            'Prediction: h* = x*/omega_max, '// &
             'the highest frequency alone sets the limit.', '', &
             '| method | x*/omega_max | h* (dgeev) | relative difference |', '|---|---:|---:|---:|'
         do k = 1, nm
@@ -479,7 +483,8 @@ contains
         write (u, '(a)') '## 5. Near collisions', '', &
             'One period (2 pi) at 1000 steps per period: (a) e = 1 - 1e-9, pericentre 1e-9; '// &
             '(b) starting exactly at the origin with v = (0, 1); (c) radial infall from '// &
-            '(1, 0) at rest, through the origin. In (b) methods that start with a kick evaluate '// &
+            '(1, 0) at rest, through the origin. In (b) methods that start with a kick '// &
+            'evaluate '// &
             'the force at r = 0 and refuse the first step; drift-first methods move away '// &
             'before the first force. Every run either survives with a finite state '// &
             'or stops with the stepper''s status and message (state restored); no silent NaN.', &
@@ -514,7 +519,8 @@ contains
             'random cases (fixed seed) to every method: NaN/Inf in q or v, NaN/Inf/zero '// &
             'steps, r = 0, steps from 1e2 to 1e300 and 1e-310, model failures and NaN forces '// &
             'mid-step, mismatched shapes, bad names and dimensions. It asserts: never stat = 0 '// &
-            'with a non-finite result; on failure a message, q and v unchanged bit for bit, the '// &
+            'with a non-finite result; on failure a message, q and v unchanged bit for bit, '// &
+            'the '// &
             'step not counted; afterwards the stepper''s next step equals a fresh stepper''s.'
         close (u)
         call rename_file(trim(doc_file)//'.tmp', trim(doc_file))

@@ -80,8 +80,9 @@ contains
     !> Integrate the Kepler orbit (mu = 1, a = 1, period 2 pi) from (q0, v0) with the method
     !> `name`, `nper` steps per period, for `nperiods` periods, checking E and L after every
     !> step. Stops at the first breakdown. A start where E0 is not finite (r = 0) skips the
-    !> energy checks (max_de = -1) and only watches the stepper's status. `de_period(k)`/`dl_period(k)`, if present, receive
-    !> the signed relative errors at the end of period k (NaN-free: 0 after a breakdown).
+    !> energy checks (max_de = -1) and only watches the stepper's status.
+    !> `de_period(k)`/`dl_period(k)`, if present, receive the signed relative errors at the
+    !> end of period k (NaN-free: 0 after a breakdown).
     subroutine fsym_kepler_run(name, q0, v0, nper, nperiods, run, de_period, dl_period)
         character(len=*), intent(in) :: name                 !! method label
         real(wp), intent(in) :: q0(2), v0(2)                 !! initial state
@@ -93,10 +94,10 @@ contains
         type(kepler_model_t) :: kep
         class(stepper_t), allocatable :: s
         real(wp) :: q(2, 1), v(2, 1), h, e0, l0, e, l, de, dl
-        de = 0.0_wp; dl = 0.0_wp
         integer(ik) :: k, p
         integer :: st
         character(len=256) :: msg
+        de = 0.0_wp; dl = 0.0_wp
         if (present(de_period)) de_period = 0.0_wp
         if (present(dl_period)) dl_period = 0.0_wp
         call fsym_new_stepper(name, kep, 2, 1, s, st, msg)

@@ -19,7 +19,8 @@ contains
             new_test('stability: stage-array map equals the integrator''s step', t_map), &
             new_test('stability: x* of every method vs integration below/above', t_cross), &
             new_test('stability: stiff chain step limit = x*/omega_max (dgeev)', t_chain), &
-            new_test('stability: FPU gradient term vs finite differences', t_fpu_grad)]
+            new_test('stability: FPU gradient term vs finite differences', t_fpu_grad), &
+            new_test('stability: near collisions refused or finite, never NaN', t_collision)]
     end function collect_stability
 
     subroutine t_t2(err)
@@ -189,6 +190,35 @@ contains
         call fpu%potential(q, e0, st)
         call check(err, maxval(abs(fd - g)) <= 1.0e-7_wp * maxval(abs(g)), 'gradient term')
     end subroutine t_fpu_grad
+
+    !> Every method through pericentre 1e-9, from r = 0, and in radial infall: each run ends
+    !> either refused with a status and message or with a finite state.
+    subroutine t_collision(err)
+        character(len=:), allocatable, intent(out) :: err
+        character(len=FSYM_NAME_LEN), allocatable :: names(:)
+        type(kepler_run_t) :: run
+        real(wp) :: q0(2, 3), v0(2, 3)
+        integer :: k, c, nrefused
+        names = fsym_method_names()
+        call kepler_elliptic_orbit(1.0_wp - 1.0e-9_wp, q0(:, 1), v0(:, 1))
+        q0(:, 2) = 0.0_wp; v0(:, 2) = [0.0_wp, 1.0_wp]
+        q0(:, 3) = [1.0_wp, 0.0_wp]; v0(:, 3) = 0.0_wp
+        nrefused = 0
+        do k = 1, size(names)
+            do c = 1, 3
+                call fsym_kepler_run(names(k), q0(:, c), v0(:, c), 200_ik, 1_ik, run)
+                if (run%outcome == RUN_REFUSED) then
+                    nrefused = nrefused + 1
+                    call check(err, run%stat /= 0 .and. len_trim(run%msg) > 0, &
+                               'refused without status: '//trim(names(k)))
+                end if
+                call check(err, run%finite, 'non-finite state kept: '//trim(names(k)))
+                call check(err, run%time == real(run%steps, wp) * (2.0_wp * FSYM_PI / 200.0_wp), &
+                           'time is not n h: '//trim(names(k)))
+            end do
+        end do
+        call check(err, nrefused > 0, 'no refusal exercised')
+    end subroutine t_collision
 
     subroutine note_real(label, x)
         character(len=*), intent(in) :: label
