@@ -423,7 +423,8 @@ contains
             ', step h = f x*/omega for each method''s own x*. Total energy error max |H - H0| '// &
             'and the oscillatory energy I = I_1 + I_2 + I_3, max |I - I(0)| (an adiabatic '// &
             'invariant; the exact I changes by O(1/omega)).', '', &
-            '| method | h limit x*/omega | '//fhead('max dH')//fhead('max dI')
+            '| method | h limit x*/omega | '//heads('max dH', 'f', fracs, 'f4.2')// &
+            heads('max dI', 'f', fracs, 'f4.2')
         write (u, '(a)') '|---|---:|'//repeat('---:|', 2 * nfrac)
         do k = 1, nm
             line = '| '//trim(names(k))//' | '//rfmt(xstar(k) / fpu_omega, 'es10.3')//' | '
@@ -458,7 +459,8 @@ contains
             'first N with max |dE/E| < 1e-6 over every step ("> nmax" if none); "broke at": '// &
             'the largest N whose run broke down (|dE/E| > 1, escape E >= 0, or a refused '// &
             'non-finite step), "-" if none.', '', &
-            '| method |'//ehead('needed')//ehead('broke at'), &
+            '| method |'//heads('needed', 'e', eccs, 'f6.4')// &
+            heads('broke at', 'e', eccs, 'f6.4'), &
             '|---|'//repeat('---:|', 2 * necc)
         do k = 1, nm
             line = '| '//trim(names(k))//' | '
@@ -526,25 +528,17 @@ contains
         call rename_file(trim(doc_file)//'.tmp', trim(doc_file))
     end subroutine write_doc
 
-    function fhead(what) result(t)
-        character(len=*), intent(in) :: what
+    !> Table column heads `what label=value |` for each value.
+    function heads(what, label, values, f) result(t)
+        character(len=*), intent(in) :: what, label, f
+        real(wp), intent(in) :: values(:)
         character(len=:), allocatable :: t
         integer :: i
         t = ''
-        do i = 1, nfrac
-            t = t//' '//what//' f='//rfmt(fracs(i), 'f4.2')//' |'
+        do i = 1, size(values)
+            t = t//' '//what//' '//label//'='//rfmt(values(i), f)//' |'
         end do
-    end function fhead
-
-    function ehead(what) result(t)
-        character(len=*), intent(in) :: what
-        character(len=:), allocatable :: t
-        integer :: i
-        t = ''
-        do i = 1, necc
-            t = t//' '//what//' e='//rfmt(eccs(i), 'f6.4')//' |'
-        end do
-    end function ehead
+    end function heads
 
     function fcell(x, st) result(t)
         real(wp), intent(in) :: x

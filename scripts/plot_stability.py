@@ -22,6 +22,17 @@ def names_of(attr):
     return [s.strip() for s in str(attr).split(",")]
 
 
+def finish(fig, ax, out, name, xlabel, ylabel, title):
+    """Label, add the legend, save as OUT/NAME and close."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, name), dpi=120)
+    plt.close(fig)
+
+
 def main():
     src = sys.argv[1] if len(sys.argv) > 1 else "out/stability.h5"
     out = sys.argv[2] if len(sys.argv) > 2 else "doc/figures"
@@ -41,13 +52,9 @@ def main():
         ax.axhline(2, color="k", lw=0.8)
         ax.axhline(-2, color="k", lw=0.8)
         ax.set_ylim(-4, 4)
-        ax.set_xlabel("x = h omega")
-        ax.set_ylabel("trace of the oscillator step map")
-        ax.set_title("Stable while |trace| < 2 (dotted: x*)")
-        ax.legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, "stability_trace.png"), dpi=120)
-        plt.close(fig)
+        finish(fig, ax, out, "stability_trace.png", "x = h omega",
+               "trace of the oscillator step map",
+               "Stable while |trace| < 2 (dotted: x*)")
 
         # 2. chain spectral radius
         h = f["chain/h"][()]
@@ -58,13 +65,9 @@ def main():
         for i, m in enumerate(cnames):
             line, = ax.semilogy(h * wmax, np.maximum(rho[i] - 1.0, 1e-16), label=m)
             ax.axvline(xs[idx[m]], color=line.get_color(), ls=":", lw=0.8)
-        ax.set_xlabel("h omega_max")
-        ax.set_ylabel("spectral radius - 1 (dgeev; floor 1e-16)")
-        ax.set_title("Stiff chain: instability sets in at h = x*/omega_max (dotted)")
-        ax.legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, "stability_chain.png"), dpi=120)
-        plt.close(fig)
+        finish(fig, ax, out, "stability_chain.png", "h omega_max",
+               "spectral radius - 1 (dgeev; floor 1e-16)",
+               "Stiff chain: instability sets in at h = x*/omega_max (dotted)")
 
         # 3. FPU energy exchange at f = 0.5 (samples (nm, nsamp, 2 + m))
         smp = f["fpu/samples_half"][()]
@@ -95,13 +98,9 @@ def main():
             ax.semilogy(sx[ok], np.minimum(y[ok], 1e3), label=m)
         for k in (1,):
             ax.axvline(k * np.pi, color="k", ls=":", lw=0.8)
-        ax.set_xlabel("h omega")
-        ax.set_ylabel("max |H - H0| over T = 50")
-        ax.set_title("FPU energy error against the step (dotted: h omega = pi)")
-        ax.legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, "stability_fpu_scan.png"), dpi=120)
-        plt.close(fig)
+        finish(fig, ax, out, "stability_fpu_scan.png", "h omega",
+               "max |H - H0| over T = 50",
+               "FPU energy error against the step (dotted: h omega = pi)")
 
         # 5. eccentric orbits: steps per period needed
         ecc = f["kepler/e"][()]
@@ -114,13 +113,9 @@ def main():
             ax.loglog(1.0 - ecc, n, "o-", label=m)
         ax.axhline(nmax, color="k", ls=":", lw=0.8)
         ax.invert_xaxis()
-        ax.set_xlabel("1 - e (pericentre distance)")
-        ax.set_ylabel("steps per period for max |dE/E| < 1e-6")
-        ax.set_title(f"Extreme eccentricity (dotted: search limit {nmax})")
-        ax.legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, "stability_eccentric.png"), dpi=120)
-        plt.close(fig)
+        finish(fig, ax, out, "stability_eccentric.png", "1 - e (pericentre distance)",
+               "steps per period for max |dE/E| < 1e-6",
+               f"Extreme eccentricity (dotted: search limit {nmax})")
 
         # 6. long run
         de = f["long/de"][()]
@@ -131,13 +126,9 @@ def main():
             n = int(done[i])
             p = np.arange(1, n + 1)
             ax.loglog(p, np.maximum(np.abs(de[i, :n]), 1e-17), lw=0.8, label=m)
-        ax.set_xlabel("period")
-        ax.set_ylabel("|dE/E| at the end of the period")
-        ax.set_title("e = 0.9 at P/1000: bounded (splitting) vs drifting (RKN)")
-        ax.legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, "stability_long.png"), dpi=120)
-        plt.close(fig)
+        finish(fig, ax, out, "stability_long.png", "period",
+               "|dE/E| at the end of the period",
+               "e = 0.9 at P/1000: bounded (splitting) vs drifting (RKN)")
 
 
 if __name__ == "__main__":
