@@ -11,6 +11,7 @@ module fsym
     use fsym_methods
     use fsym_kepler
     use fsym_models
+    use fsym_nbody
     use fsym_trace
     use fsym_analysis
     use fsym_stability

@@ -1,0 +1,63 @@
+/* forward-symplectic: C interface (hand-written; see src/fsym_capi.f90).
+ *
+ * Every function returns an integer status (0 = success; codes as in src/fsym_status.f90,
+ * text from fsym_status_message). Nothing in the library ever ends the program.
+ * Arrays are C arrays double q[n][d] (Fortran q(d, n)): body j, component k is q[j][k].
+ * Link with -lfsym -lgfortran (or through pkg-config fsym / CMake forward-symplectic::fsym).
+ */
+#ifndef FSYM_H
+#define FSYM_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum {
+    FSYM_SUCCESS = 0,
+    FSYM_ERR_UNKNOWN_METHOD = 1,
+    FSYM_ERR_BAD_PARAMETER = 2,
+    FSYM_ERR_INCONSISTENT_SCHEME = 3,
+    FSYM_ERR_BAD_STEP = 4,
+    FSYM_ERR_NONFINITE_STATE = 5,
+    FSYM_ERR_NONFINITE_FORCE = 6,
+    FSYM_ERR_SHAPE = 7,
+    FSYM_ERR_NO_GRADIENT = 8,
+    FSYM_ERR_NOT_INITIALIZED = 9,
+    FSYM_ERR_WORK_SIZE = 10,
+    FSYM_ERR_MODEL = 11
+};
+
+/* Opaque integrator. */
+typedef struct fsym_integrator fsym_integrator;
+
+/* Accelerations a[n][d] at positions q[n][d]; return non-zero to report a failure
+ * (the step is then undone and fsym_step returns FSYM_ERR_MODEL). */
+typedef int (*fsym_accel_fn)(int d, int n, const double *q, double *a, void *user);
+
+/* Gradient term g_j = (1/m_j) d/dq_j sum_i m_i |a_i|^2 at q, given a = a(q). */
+typedef int (*fsym_grad_fn)(int d, int n, const double *q, const double *a, double *g,
+                            void *user);
+
+/* A new integrator for the method label ("FR", "A", "A'", "C", "A6", "BM", "M2(-0.5)", ...)
+ * on arrays of d components and n bodies. grad may be NULL: methods with a gradient kick
+ * (A, C, AN) then need their primed (extrapolated) form. *handle is NULL on failure. */
+int fsym_create(const char *method, int d, int n, fsym_accel_fn accel, fsym_grad_fn grad,
+                void *user, fsym_integrator **handle);
+
+/* nstep steps of size h; on failure q, v hold the state after the last completed step. */
+int fsym_step(fsym_integrator *handle, double *q, double *v, double h, int nstep);
+
+/* Force and gradient evaluations so far. */
+int fsym_counts(const fsym_integrator *handle, long long *nforce, long long *ngrad);
+
+/* Free the integrator (NULL is ignored). */
+void fsym_destroy(fsym_integrator *handle);
+
+/* NUL-terminated text of a status code in buf (at most len bytes). */
+void fsym_status_message(int code, char *buf, int len);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* FSYM_H */
