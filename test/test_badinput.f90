@@ -8,6 +8,7 @@ module test_badinput
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, &
                                              ieee_negative_inf
     use fsym
+    use fsym_legacy_api, only: FSYMWK, FSYMIN, FSYMST, FSYMMS
     use testing
     implicit none
     private
@@ -37,7 +38,8 @@ contains
     function collect_badinput() result(tests)
         type(test_t), allocatable :: tests(:)
         tests = [new_test('badinput: randomized bad inputs lose nothing', t_random), &
-                 new_test('badinput: bad names and parameters leave the stepper', t_params)]
+                 new_test('badinput: bad names and parameters leave the stepper', t_params), &
+                 new_test('badinput: short or foreign work arrays (F77 layer)', t_legacy)]
     end function collect_badinput
 
     subroutine faulty_acc(self, q, a, stat)
@@ -288,5 +290,87 @@ contains
         call s%step(kep, q, v, 0.01_wp, st, msg)
         call check(err, st == 0 .and. finite(q), 'stepper not usable after bad parameters')
     end subroutine t_params
+
+    !> F77 oscillator a = -x.
+    subroutine f77_accel(nd, n, x, a)
+        integer, intent(in) :: nd, n
+        real(wp), intent(in) :: x(nd, n)
+        real(wp), intent(out) :: a(nd, n)
+        a = -x
+    end subroutine f77_accel
+
+    !> F77 gradient term g = 2x.
+    subroutine f77_grad(nd, n, x, a, g)
+        integer, intent(in) :: nd, n
+        real(wp), intent(in) :: x(nd, n), a(nd, n)
+        real(wp), intent(out) :: g(nd, n)
+        g = 2.0_wp * x + 0.0_wp * a
+    end subroutine f77_grad
+
+    !> The F77 layer with work arrays that are too short, set up for other dimensions, or a
+    !> non-finite state: INFO /= 0 with a message, the arrays and the state untouched; the
+    !> same arrays then work when used correctly.
+    subroutine t_legacy(err)
+        character(len=:), allocatable, intent(out) :: err
+        type(rng_t) :: r
+        real(wp), allocatable :: rw(:), rw0(:)
+        integer, allocatable :: iw(:), iw0(:)
+        real(wp), allocatable :: x(:, :), v(:, :), x0(:, :), v0(:, :)
+        integer :: icase, meth, nd, n, lrw, liw, info, k, kind
+        character(len=128) :: msg, where
+        r%s = 77_int64
+        do icase = 1, 200
+            if (allocated(err)) exit
+            meth = irand(r, 1, size(fsym_catalogue()))
+            nd = irand(r, 1, 3); n = irand(r, 1, 3)
+            write (where, '(a,i0,a,i0)') 'legacy case ', icase, ' method ', meth
+            call FSYMWK(meth, nd, n, lrw, liw, info)
+            call check(err, info == 0 .and. lrw > 0 .and. liw > 0, trim(where)//': FSYMWK')
+            if (info /= 0) exit
+            if (allocated(rw)) deallocate (rw, iw, x, v)
+            allocate (rw(lrw), iw(liw), x(nd, n), v(nd, n))
+            rw = 7.0_wp; iw = 7
+            x = 0.5_wp; v = 0.25_wp
+            kind = irand(r, 1, 4)
+            if (kind == 1) then
+                ! too short for FSYMIN: rejected, nothing written
+                k = irand(r, 0, 1)
+                rw0 = rw; iw0 = iw
+                call FSYMIN(meth, nd, n, rw, lrw - 1 + k, iw, liw - k, info)
+                call FSYMMS(info, msg)
+                call check(err, info == FSYM_ERR_WORK_SIZE .and. len_trim(msg) > 0, &
+                           trim(where)//': short array accepted by FSYMIN')
+                call check(err, all(rw == rw0) .and. all(iw == iw0), &
+                           trim(where)//': FSYMIN wrote into a short array')
+            end if
+            call FSYMIN(meth, nd, n, rw, lrw, iw, liw, info)
+            call check(err, info == 0, trim(where)//': FSYMIN')
+            x0 = x; v0 = v
+            select case (kind)
+            case (2)     ! the set-up arrays passed with shorter lengths
+                k = irand(r, 0, 1)
+                call FSYMST(nd, n, x, v, 0.01_wp, 1, f77_accel, f77_grad, rw, lrw - 1 + k, iw, &
+                            max(8, liw - k), info)
+            case (3)     ! arrays set up for other dimensions
+                call FSYMST(nd, n + 1, x, v, 0.01_wp, 1, f77_accel, f77_grad, rw, lrw, iw, &
+                            liw, info)
+            case (4)     ! non-finite state
+                x(irand(r, 1, nd), irand(r, 1, n)) = bad_real(r)
+                x0 = x
+                call FSYMST(nd, n, x, v, 0.01_wp, 1, f77_accel, f77_grad, rw, lrw, iw, liw, info)
+            case default ! a bad step
+                call FSYMST(nd, n, x, v, bad_real(r), 1, f77_accel, f77_grad, rw, lrw, iw, &
+                            liw, info)
+            end select
+            call FSYMMS(info, msg)
+            call check(err, info /= 0 .and. len_trim(msg) > 0, trim(where)//': accepted')
+            call check(err, same_bits(x, x0) .and. same_bits(v, v0), &
+                       trim(where)//': state changed on failure')
+            x = 0.5_wp; v = 0.25_wp
+            call FSYMST(nd, n, x, v, 0.01_wp, 3, f77_accel, f77_grad, rw, lrw, iw, liw, info)
+            call check(err, info == 0 .and. finite(x) .and. finite(v), &
+                       trim(where)//': not usable afterwards')
+        end do
+    end subroutine t_legacy
 
 end module test_badinput
