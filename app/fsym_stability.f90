@@ -11,6 +11,7 @@
 program fsym_stability_study
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use fsym
+    use fsym_h5, only: h5_file_t
     implicit none
 
     character(len=FSYM_NAME_LEN), allocatable :: names(:)
@@ -196,7 +197,7 @@ contains
                 h = fracs(i) * xstar(k) / fpu_omega
                 nsteps = nint(fpu_t / h, ik)
                 call fsym_fpu_run(trim(names(k)), fpu_m, fpu_omega, h, nsteps, &
-                                  max(1_ik, nsteps / (nsamp - 1)), fpu_samples(:, :, i, k), &
+                                  max(1_ik, (nsteps + nsamp - 2) / (nsamp - 1)), fpu_samples(:, :, i, k), &
                                   fpu_ns(i, k), fpu_dh(i, k), fpu_di(i, k), fpu_stat(i, k), msg)
             end do
         end do
@@ -585,8 +586,87 @@ contains
         close (ui, status='delete')
     end subroutine rename_file
 
+    !> Names joined by commas (for a string attribute).
+    function joined(list) result(t)
+        character(len=*), intent(in) :: list(:)
+        character(len=:), allocatable :: t
+        integer :: k
+        t = trim(list(1))
+        do k = 2, size(list)
+            t = t//','//trim(list(k))
+        end do
+    end function joined
+
+    !> Every result to HDF5 (through the shared layer: atomic, every status checked).
+    !> Fortran (n1, n2) arrays appear in h5py as (n2, n1): per method rows.
     subroutine write_h5()
-        call say('HDF5 output: not written yet ('//trim(out_file)//')')
+        type(h5_file_t) :: h5
+        integer :: st
+        call say('writing '//trim(out_file))
+        call h5%create(trim(out_file), st, msg)
+        if (st /= 0) call die(msg)
+        call h5%set_attr('/', 'generator', 'fsym-stability', st, msg); call ok(h5, st)
+        call h5%set_attr('/', 'methods', joined(names), st, msg); call ok(h5, st)
+        call h5%set_attr('/', 'periods', int(nperiods), st, msg); call ok(h5, st)
+        ! 1. oscillator
+        call h5%write('oscillator/x', xgrid, st, msg); call ok(h5, st)
+        call h5%write('oscillator/trace', trace_curve, st, msg); call ok(h5, st)
+        call h5%write('oscillator/xstar', xstar, st, msg); call ok(h5, st)
+        call h5%write('oscillator/window_end', min(xnext, 40.0_wp), st, msg); call ok(h5, st)
+        call h5%write('oscillator/evaluations', evals, st, msg); call ok(h5, st)
+        call h5%write('oscillator/growth', growth, st, msg); call ok(h5, st)
+        ! 2. chain
+        call h5%write('chain/omega', chain_omega, st, msg); call ok(h5, st)
+        call h5%write('chain/predicted', chain_pred, st, msg); call ok(h5, st)
+        call h5%write('chain/measured', chain_meas, st, msg); call ok(h5, st)
+        call h5%write('chain/h', hgrid, st, msg); call ok(h5, st)
+        call h5%write('chain/rho', rho_curve, st, msg); call ok(h5, st)
+        call h5%set_attr('chain', 'methods', joined(curve_names), st, msg); call ok(h5, st)
+        call h5%set_attr('chain', 'ratio', chain_ratio, st, msg); call ok(h5, st)
+        ! 3. FPU
+        call h5%write('fpu/fractions', fracs, st, msg); call ok(h5, st)
+        call h5%write('fpu/max_dH', fpu_dh, st, msg); call ok(h5, st)
+        call h5%write('fpu/max_dI', fpu_di, st, msg); call ok(h5, st)
+        call h5%write('fpu/status', real(fpu_stat, wp), st, msg); call ok(h5, st)
+        call h5%write('fpu/samples_half', fpu_samples(:, :, 2, :), st, msg); call ok(h5, st)
+        call h5%write('fpu/nsamples_half', fpu_ns(2, :), st, msg); call ok(h5, st)
+        call h5%write('fpu/scan_x', scan_x, st, msg); call ok(h5, st)
+        call h5%write('fpu/scan_dh', scan_dh, st, msg); call ok(h5, st)
+        call h5%write('fpu/scan_flag', merge(1.0_wp, 0.0_wp, scan_flag), st, msg); call ok(h5, st)
+        call h5%set_attr('fpu', 'omega', fpu_omega, st, msg); call ok(h5, st)
+        call h5%set_attr('fpu', 'T', fpu_t, st, msg); call ok(h5, st)
+        ! 4. eccentric orbits
+        call h5%write('kepler/e', eccs, st, msg); call ok(h5, st)
+        call h5%write('kepler/needed', real(needed, wp), st, msg); call ok(h5, st)
+        call h5%write('kepler/broken', real(broken, wp), st, msg); call ok(h5, st)
+        call h5%write('kepler/grid', real(egrid, wp), st, msg); call ok(h5, st)
+        call h5%write('kepler/max_dE', eerr, st, msg); call ok(h5, st)
+        call h5%write('kepler/outcome', real(eout, wp), st, msg); call ok(h5, st)
+        call h5%set_attr('kepler', 'nmax', int(nmax), st, msg); call ok(h5, st)
+        ! 5. near collisions
+        call h5%write('near/outcome', real(near%outcome, wp), st, msg); call ok(h5, st)
+        call h5%write('near/stat', real(near%stat, wp), st, msg); call ok(h5, st)
+        call h5%write('near/max_dE', near%max_de, st, msg); call ok(h5, st)
+        ! 6. long run
+        call h5%write('long/de', long_de, st, msg); call ok(h5, st)
+        call h5%write('long/dl', long_dl, st, msg); call ok(h5, st)
+        call h5%write('long/periods_done', long_run%steps / 1000_ik, st, msg); call ok(h5, st)
+        call h5%write('long/max_dE', long_run%max_de, st, msg); call ok(h5, st)
+        call h5%write('long/max_dL', long_run%max_dl, st, msg); call ok(h5, st)
+        call h5%write('long/slope', long_slope, st, msg); call ok(h5, st)
+        call h5%set_attr('long', 'methods', joined(long_names), st, msg); call ok(h5, st)
+        call h5%close(st, msg)
+        if (st /= 0) call die(msg)
     end subroutine write_h5
+
+    !> After an HDF5 call: on failure delete the temporary file and stop with the message.
+    subroutine ok(h5, code)
+        type(h5_file_t), intent(inout) :: h5
+        integer, intent(in) :: code
+        if (code /= 0) then
+            call h5%abort()
+            call die(msg)
+        end if
+    end subroutine ok
 
 end program fsym_stability_study
