@@ -20,7 +20,8 @@ contains
             new_test('stability: x* of every method vs integration below/above', t_cross), &
             new_test('stability: stiff chain step limit = x*/omega_max (dgeev)', t_chain), &
             new_test('stability: FPU gradient term vs finite differences', t_fpu_grad), &
-            new_test('stability: near collisions refused or finite, never NaN', t_collision)]
+            new_test('stability: near collisions refused or finite, never NaN', t_collision), &
+            new_test('stability: FPU run keeps H and I; Kepler step search', t_runs)]
     end function collect_stability
 
     subroutine t_t2(err)
@@ -219,6 +220,28 @@ contains
         end do
         call check(err, nrefused > 0, 'no refusal exercised')
     end subroutine t_collision
+
+    !> FPU with C at a quarter of its limit: energy error small, oscillatory energy nearly
+    !> kept; the Kepler search at e = 0.5 finds a step count, and errors fall along the grid.
+    subroutine t_runs(err)
+        character(len=:), allocatable, intent(out) :: err
+        real(wp) :: samples(5, 11), dh, di, xs, errs(20)
+        integer(ik) :: needed, broken, grid(20)
+        integer :: ns, st, ng, outcomes(20)
+        character(len=256) :: msg
+        call fsym_stability_interval(fsym_scheme_c(), xs)
+        call fsym_fpu_run('C', 3, 50.0_wp, 0.25_wp * xs / 50.0_wp, 1414_ik, 141_ik, samples, ns, &
+                          dh, di, st, msg)
+        call check(err, st == 0 .and. ns == 11, 'FPU run: '//trim(msg))
+        call check(err, dh < 1.0e-3_wp, 'FPU energy error with C at 0.25 x*')
+        call check(err, di < 0.1_wp, 'FPU oscillatory energy with C at 0.25 x*')
+        call check_close(err, samples(3, 1), 1.0_wp, 1.0e-12_wp, 'I_1 in the first sample')
+        call fsym_kepler_steps_needed('C', 0.5_wp, 1.0e-6_wp, 16_ik, 4096_ik, needed, broken, &
+                                      ng, grid, errs, outcomes)
+        call check(err, needed > 16 .and. needed <= 4096, 'no step count found at e = 0.5')
+        call check(err, errs(ng) < 1.0e-6_wp .and. errs(1) > errs(ng), 'errors do not fall')
+        call check(err, broken == 0, 'C broke down at e = 0.5')
+    end subroutine t_runs
 
     subroutine note_real(label, x)
         character(len=*), intent(in) :: label
