@@ -21,11 +21,11 @@ module fsym_fpu
         real(wp), allocatable :: k(:)   !! harmonic constants k(0:n)
         real(wp), allocatable :: b(:)   !! quartic constants b(0:n)
     contains
-        procedure :: acceleration => chain_acceleration
-        procedure :: gradient => chain_gradient
-        procedure :: has_gradient => chain_has
-        procedure :: potential => chain_potential
-        procedure :: has_potential => chain_has
+        procedure :: acceleration => chain_acceleration  !! a = -grad V
+        procedure :: gradient => chain_gradient          !! g = grad |a|^2
+        procedure :: has_gradient => chain_has           !! true once set up
+        procedure :: potential => chain_potential        !! V
+        procedure :: has_potential => chain_has          !! true once set up
     end type spring_chain_model_t
 
     public :: fsym_linear_chain, fsym_fpu_chain, fsym_fpu_initial, fsym_fpu_oscillatory
