@@ -19,7 +19,7 @@ module fsym_h5
     implicit none
     private
 
-    public :: h5_file_t
+    public :: h5_file_t, fsym_rename_file
 
     integer, parameter :: MODE_CLOSED = 0, MODE_WRITE = 1, MODE_READ = 2
 
@@ -68,7 +68,7 @@ module fsym_h5
         end function c_remove
     end interface
 
-    logical, save :: lib_open = .false.
+    logical :: lib_open = .false.
 
 contains
 
@@ -170,6 +170,21 @@ contains
     end function t_ik
 
     ! ---------------------------------------------------------------- files
+
+    !> Rename a file with the C library's `rename` (atomic on one file system); used to put
+    !> any finished output (e.g. a text report written under a temporary name) in place.
+    subroutine fsym_rename_file(from, to, stat, errmsg)
+        character(len=*), intent(in) :: from                  !! current name
+        character(len=*), intent(in) :: to                    !! new name
+        integer, intent(out), optional :: stat                !! status code
+        character(len=*), intent(inout), optional :: errmsg   !! message on error
+        if (c_rename(trim(from)//c_null_char, trim(to)//c_null_char) /= 0) then
+            call fsym_report(FSYM_ERR_IO, 'cannot rename '//trim(from)//' to '//trim(to), &
+                             stat, errmsg)
+        else if (present(stat)) then
+            stat = FSYM_SUCCESS
+        end if
+    end subroutine fsym_rename_file
 
     !> Create `path` for writing (under the temporary name `path//'.part'`).
     subroutine h5_create(self, path, stat, errmsg)
@@ -298,8 +313,9 @@ contains
         if (not_open(self, MODE_WRITE, 'make_group '//trim(path), stat, errmsg)) return
         if (present(stat)) stat = FSYM_SUCCESS
         p = abspath(path)
-        do i = 2, len(p)
-            if (i < len(p) .and. p(i + 1:i + 1) /= '/') cycle
+        p = p//'/'    ! every prefix ending before a '/' is a group
+        do i = 2, len(p) - 1
+            if (p(i + 1:i + 1) /= '/' .or. p(i:i) == '/') cycle
             if (self%exists(p(1:i))) cycle
             call h5gcreate_f(self%id, p(1:i), gid, ierr)
             if (bad(ierr, 'cannot create group '//p(1:i), stat, errmsg)) then
@@ -341,6 +357,7 @@ contains
         integer :: ierr, st
         character(len=512) :: msg
         character(len=:), allocatable :: p
+        msg = ''
         sid = -1; did = -1; st = FSYM_SUCCESS
         if (not_open(self, MODE_WRITE, 'write '//trim(path), stat, errmsg)) return
         p = abspath(path)
@@ -374,6 +391,7 @@ contains
         integer :: ierr, st, r, rk
         character(len=512) :: msg
         character(len=:), allocatable :: p
+        msg = ''
         sid = -1; did = -1; pid = -1; msid = -1; st = FSYM_SUCCESS
         if (not_open(self, MODE_WRITE, 'append '//trim(path), stat, errmsg)) return
         p = abspath(path)
@@ -589,6 +607,7 @@ contains
         integer(hsize_t) :: n(1)
         integer :: st
         character(len=512) :: msg
+        msg = ''
         call open_dataset(self, path, 1, did, n, st, msg)
         if (st == FSYM_SUCCESS) then
             allocate (x(n(1)))
@@ -609,6 +628,7 @@ contains
         integer(hsize_t) :: n(2)
         integer :: st
         character(len=512) :: msg
+        msg = ''
         call open_dataset(self, path, 2, did, n, st, msg)
         if (st == FSYM_SUCCESS) then
             allocate (x(n(1), n(2)))
@@ -629,6 +649,7 @@ contains
         integer(hsize_t) :: n(3)
         integer :: st
         character(len=512) :: msg
+        msg = ''
         call open_dataset(self, path, 3, did, n, st, msg)
         if (st == FSYM_SUCCESS) then
             allocate (x(n(1), n(2), n(3)))
@@ -649,6 +670,7 @@ contains
         integer(hsize_t) :: n(1)
         integer :: st
         character(len=512) :: msg
+        msg = ''
         call open_dataset(self, path, 1, did, n, st, msg)
         if (st == FSYM_SUCCESS) then
             allocate (x(n(1)))
@@ -670,6 +692,7 @@ contains
         integer(hsize_t) :: n(1)
         integer :: st
         character(len=512) :: msg
+        msg = ''
         call open_dataset(self, path, 1, did, n, st, msg)
         if (st == FSYM_SUCCESS) then
             allocate (x(n(1)))
@@ -697,6 +720,7 @@ contains
         character(len=512) :: msg
         logical :: there
         character(len=:), allocatable :: what
+        msg = ''
         oid = -1; sid = -1; aid = -1; st = FSYM_SUCCESS
         if (not_open(self, MODE_WRITE, 'attribute '//trim(name), stat, errmsg)) return
         what = 'attribute '//trim(name)//' of '//abspath(path)
@@ -813,8 +837,9 @@ contains
         call h5tset_size_f(tid, int(size(buf), size_t), ierr)
         if (.not. bad(ierr, 'string size', stat, errmsg)) then
             call h5tset_strpad_f(tid, H5T_STR_NULLPAD_F, ierr)
-            if (.not. bad(ierr, 'string padding', stat, errmsg)) &
+            if (.not. bad(ierr, 'string padding', stat, errmsg)) then
                 call set_attr_raw(self, path, name, tid, none, c_loc(buf), stat, errmsg)
+            end if
         end if
         if (ierr < 0) self%failed = .true.
         call release(tid)
@@ -883,6 +908,7 @@ contains
         integer(size_t) :: sz
         integer :: st, ierr, i, k
         character(len=512) :: msg
+        msg = ''
         ftid = -1; tid = -1
         value = ''
         call open_attr(self, path, name, oid, aid, n, st, msg)
@@ -934,10 +960,12 @@ contains
         integer(hsize_t) :: n
         integer :: st
         character(len=512) :: msg
+        msg = ''
         value = 0.0_wp
         call open_attr(self, path, name, oid, aid, n, st, msg)
-        if (st == FSYM_SUCCESS .and. n /= 1) &
+        if (st == FSYM_SUCCESS .and. n /= 1) then
             call fsym_report(FSYM_ERR_IO, 'attribute '//trim(name)//' not scalar', st, msg)
+        end if
         call read_attr_close(oid, aid, t_real(), c_loc(value), name, st, msg)
         call fsym_pass(st, trim(msg), stat, errmsg)
     end subroutine ga_r0
@@ -954,10 +982,12 @@ contains
         integer(hsize_t) :: n
         integer :: st
         character(len=512) :: msg
+        msg = ''
         value = 0
         call open_attr(self, path, name, oid, aid, n, st, msg)
-        if (st == FSYM_SUCCESS .and. n /= 1) &
+        if (st == FSYM_SUCCESS .and. n /= 1) then
             call fsym_report(FSYM_ERR_IO, 'attribute '//trim(name)//' not scalar', st, msg)
+        end if
         call read_attr_close(oid, aid, H5T_NATIVE_INTEGER, c_loc(value), name, st, msg)
         call fsym_pass(st, trim(msg), stat, errmsg)
     end subroutine ga_i0
@@ -974,6 +1004,7 @@ contains
         integer(hsize_t) :: n
         integer :: st
         character(len=512) :: msg
+        msg = ''
         call open_attr(self, path, name, oid, aid, n, st, msg)
         allocate (value(max(1_hsize_t, n)))
         call read_attr_close(oid, aid, t_real(), c_loc(value), name, st, msg)
@@ -993,6 +1024,7 @@ contains
         integer(hsize_t) :: n
         integer :: st
         character(len=512) :: msg
+        msg = ''
         call open_attr(self, path, name, oid, aid, n, st, msg)
         allocate (value(max(1_hsize_t, n)))
         call read_attr_close(oid, aid, H5T_NATIVE_INTEGER, c_loc(value), name, st, msg)

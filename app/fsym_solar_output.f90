@@ -2,7 +2,8 @@
 !> HDF5 file (through the shared `fsym_h5` module).
 module fsym_solar_output
     use fsym_kinds, only: wp, ik
-    use fsym_status
+    use fsym_status, only: fsym_report, FSYM_SUCCESS, FSYM_ERR_IO
+    use fsym_h5, only: h5_file_t
     implicit none
     private
 
@@ -69,20 +70,57 @@ contains
                 write (u, '(a)') trim(row)
             end do
         end do
-        write (u, '(a)') '', 'The final states of every run and the reference state are in '// &
-            '`out/solar.h5` (not committed).'
+        write (u, '(a)') '', 'The same numbers, the final states of every run and the '// &
+            'reference state are in `out/solar.h5`', '(not committed): attributes `t_end`, '// &
+            '`n_bodies`; `steps`; `reference/q`, `reference/v`; per method', &
+            '`methods/<name>/` the datasets `phase_space_error`, `max_position_error`, '// &
+            '`max_relative_energy_error`,', '`force_evaluations`, `gradient_evaluations`, '// &
+            '`seconds` (one value per step) and `q_end`, `v_end` (3 x bodies x steps).'
         close (u)
         stat = FSYM_SUCCESS
     end subroutine write_solar_markdown
 
-    !> The HDF5 file: one group per method with datasets per step.
+    !> The HDF5 file (through the shared `fsym_h5`): attributes on `/`, `steps`, the
+    !> `reference` state, and per method `methods/<name>/` the errors, counts, times and
+    !> final states (3, n, steps) of each step. Written atomically: no partial file survives.
     subroutine write_solar_h5(path, res, stat, errmsg)
         character(len=*), intent(in) :: path                !! output file
         type(solar_results_t), intent(in) :: res            !! results
         integer, intent(out) :: stat                        !! status
         character(len=*), intent(inout) :: errmsg           !! message on error
-        stat = FSYM_SUCCESS
-        if (len(path) < 0 .or. res%n < 0) errmsg = ''
+        type(h5_file_t) :: f
+        character(len=:), allocatable :: g
+        integer :: km
+        call f%create(path, stat, errmsg)
+        if (stat /= FSYM_SUCCESS) return
+        call f%set_attr('/', 'description', 'outer solar system (Hairer, Lubich, Wanner), '// &
+                        'units AU, days, solar masses; program app/fsym_solar.f90', stat, errmsg)
+        if (stat == FSYM_SUCCESS) call f%set_attr('/', 't_end', res%t_end, stat, errmsg)
+        if (stat == FSYM_SUCCESS) call f%set_attr('/', 'n_bodies', res%n, stat, errmsg)
+        if (stat == FSYM_SUCCESS) call f%write('steps', res%h, stat, errmsg)
+        if (stat == FSYM_SUCCESS) call f%write('reference/q', res%q_ref, stat, errmsg)
+        if (stat == FSYM_SUCCESS) call f%write('reference/v', res%v_ref, stat, errmsg)
+        do km = 1, size(res%methods)
+            if (stat /= FSYM_SUCCESS) exit
+            g = 'methods/'//trim(res%methods(km))//'/'
+            call f%write(g//'phase_space_error', res%err_phase(km, :), stat, errmsg)
+            if (stat == FSYM_SUCCESS) &
+                call f%write(g//'max_position_error', res%err_q(km, :), stat, errmsg)
+            if (stat == FSYM_SUCCESS) &
+                call f%write(g//'max_relative_energy_error', res%err_energy(km, :), stat, errmsg)
+            if (stat == FSYM_SUCCESS) call f%write(g//'seconds', res%seconds(km, :), stat, errmsg)
+            if (stat == FSYM_SUCCESS) &
+                call f%write(g//'force_evaluations', res%nforce(km, :), stat, errmsg)
+            if (stat == FSYM_SUCCESS) &
+                call f%write(g//'gradient_evaluations', res%ngrad(km, :), stat, errmsg)
+            if (stat == FSYM_SUCCESS) call f%write(g//'q_end', res%q_end(:, :, km, :), stat, errmsg)
+            if (stat == FSYM_SUCCESS) call f%write(g//'v_end', res%v_end(:, :, km, :), stat, errmsg)
+        end do
+        if (stat /= FSYM_SUCCESS) then
+            call f%abort()
+            return
+        end if
+        call f%close(stat, errmsg)
     end subroutine write_solar_h5
 
 end module fsym_solar_output

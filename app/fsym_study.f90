@@ -1,38 +1,75 @@
-!> Main job (first version): integrates the paper's e = 0.9 Kepler orbit for one period at
-!> eps = P/5000 with every method and prints its evaluation counts and energy error.
+!> The main job: the paper's study of forward and non-forward integrators on the e = 0.9
+!> Kepler orbit. One scene per figure of the paper, each written to `<out>/<scene>.h5`
+!> (H5MD-like layout, see doc/h5-layout.md), and the results report `doc/results.md`.
+!>
+!>     fsym-study [--all] [--scene NAME]... [--out DIR] [--results FILE] [--list]
+!>
+!> Coefficient scenes (eng*) record the energy and precession error coefficients of every
+!> step over two periods at eps = P/5000 and no force points; force-point scenes (back*)
+!> trace two steps at eps = P/400 from two steps before the pericentre (t = P/2) and write
+!> no coefficient curves. Scans: M2 over t1 (zero of the precession at t = P) and GFR5
+!> over alpha (least energy and least precession error). Default: `--all`.
 program fsym_study
     use, intrinsic :: iso_fortran_env, only: output_unit
-    use fsym
+    use fsym_study_scenes, only: SCENES, study_init, study_scene, study_say, study_die
     implicit none
-    type(kepler_model_t) :: kep
-    class(stepper_t), allocatable :: s
-    character(len=FSYM_NAME_LEN), allocatable :: names(:)
-    real(wp) :: q(2, 1), v(2, 1), p, e0, h, emax
-    integer :: k, st, j
-    integer, parameter :: nper = 5000
-    character(len=256) :: msg
+    character(len=512) :: arg, val, outdir, results
+    logical :: want(size(SCENES)), any_scene
+    integer :: i, j, n
 
-    names = fsym_method_names()
-    write (output_unit, '(a)') '# paper orbit q=(10,0) v=(0,0.1), e=0.9, one period at eps = P/5000'
-    write (output_unit, '(a)') '# method       forward  F/step  G/step  (E(P)-E0)/E0    '// &
-        ' max|E-E0|/(|E0| eps^4)'
-    do k = 1, size(names)
-        call kepler_paper_orbit(q(:, 1), v(:, 1), p)
-        e0 = kepler_energy(q(:, 1), v(:, 1))
-        h = p / nper
-        call fsym_new_stepper(trim(names(k)), kep, 2, 1, s, st, msg)
-        emax = 0.0_wp
-        do j = 1, nper
-            if (st /= 0) exit
-            call s%step(kep, q, v, h, st, msg)
-            emax = max(emax, abs(kepler_energy(q(:, 1), v(:, 1)) - e0))
-        end do
-        if (st /= 0) then
-            write (output_unit, '(a12,2x,a)') trim(names(k)), 'FAILED: '//trim(msg)
-            cycle
-        end if
-        write (output_unit, '(a12,2x,l7,2i8,2es16.6)') trim(names(k)), s%is_forward(), &
-            s%forces_per_step(), s%gradients_per_step(), &
-            (kepler_energy(q(:, 1), v(:, 1)) - e0) / e0, emax / (abs(e0) * h**4)
+    outdir = 'out'
+    results = 'doc/results.md'
+    want = .false.
+    any_scene = .false.
+    n = command_argument_count()
+    i = 0
+    do while (i < n)
+        i = i + 1
+        call get_command_argument(i, arg)
+        select case (trim(arg))
+        case ('--all')
+            want = .true.; any_scene = .true.
+        case ('--list')
+            write (output_unit, '(a)') (trim(SCENES(j)), j=1, size(SCENES))
+            stop
+        case ('--scene', '--out', '--results')
+            if (i == n) call study_die(trim(arg)//' needs a value')
+            i = i + 1
+            call get_command_argument(i, val)
+            if (arg == '--out') then
+                outdir = val
+            else if (arg == '--results') then
+                results = val
+            else
+                any_scene = .true.
+                j = scene_index(val)
+                if (j == 0) call study_die('unknown scene "'//trim(val)//'" (see --list)')
+                want(j) = .true.
+            end if
+        case ('-h', '--help')
+            write (output_unit, '(a)') 'usage: fsym-study [--all] [--scene NAME]... '// &
+                '[--out DIR] [--results FILE] [--list]'
+            stop
+        case default
+            call study_die('unknown argument "'//trim(arg)//'"')
+        end select
     end do
+    if (.not. any_scene) want = .true.
+    call study_init(outdir, results)
+    do j = 1, size(SCENES)
+        if (want(j)) call study_scene(SCENES(j))
+    end do
+    call study_say('done')
+
+contains
+
+    integer function scene_index(name)
+        character(len=*), intent(in) :: name
+        integer :: k
+        scene_index = 0
+        do k = 1, size(SCENES)
+            if (trim(SCENES(k)) == trim(name)) scene_index = k
+        end do
+    end function scene_index
+
 end program fsym_study

@@ -1,5 +1,5 @@
-!> forward-symplectic: fourth-order forward and non-forward symplectic integrators for
-!> classical dynamics (S. A. Chin). The umbrella module: `use fsym` gives the public API.
+!> The umbrella module of forward-symplectic, fourth-order forward and non-forward symplectic
+!> integrators for classical dynamics (S. A. Chin): `use fsym` gives the public API.
 module fsym
     use fsym_kinds, only: wp, ik
     use fsym_status
@@ -17,6 +17,7 @@ module fsym
     use fsym_stability
     use fsym_fpu
     use fsym_stability_runs
+    use fsym_diagnostics
     implicit none
     public
 

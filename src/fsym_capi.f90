@@ -10,7 +10,8 @@ module fsym_capi
                                            c_long_long, c_null_ptr, c_null_funptr, c_null_char, &
                                            c_associated, c_f_pointer, c_f_procpointer, c_loc
     use fsym_kinds, only: wp, ik
-    use fsym_status
+    use fsym_status, only: fsym_status_message, FSYM_SUCCESS, FSYM_ERR_BAD_PARAMETER, &
+                           FSYM_ERR_NO_GRADIENT, FSYM_ERR_NOT_INITIALIZED, FSYM_ERR_CAPACITY
     use fsym_force, only: force_model_t
     use fsym_integrator, only: integrator_t
     implicit none
@@ -115,7 +116,10 @@ contains
             if (method(k) == c_null_char) exit
             name = name//method(k)
         end do
-        allocate (p)
+        allocate (p, stat=st)
+        if (st /= 0) then
+            stat = FSYM_ERR_CAPACITY; return
+        end if
         p%model%accel = accel
         p%model%grad = grad
         p%model%user = user

@@ -16,17 +16,18 @@ module fsym_force
     !> A force model: accelerations, and optionally the gradient term and the potential.
     type, abstract, public :: force_model_t
     contains
-        procedure(acceleration_iface), deferred :: acceleration
-        procedure :: gradient => force_no_gradient
-        procedure :: has_gradient => force_has_no_gradient
-        procedure :: potential => force_no_potential
-        procedure :: has_potential => force_has_no_potential
+        procedure(acceleration_iface), deferred :: acceleration  !! accelerations a(q) (required)
+        procedure :: gradient => force_no_gradient      !! gradient term g(q) (optional)
+        procedure :: has_gradient => force_has_no_gradient  !! whether `gradient` is provided
+        procedure :: potential => force_no_potential    !! potential energy (optional)
+        procedure :: has_potential => force_has_no_potential  !! whether `potential` is provided
     end type force_model_t
 
+    !> Interface of `force_model_t%acceleration`.
     abstract interface
-        !> Accelerations a(:,j) of every particle j at positions q. Set `stat` non-zero to
-        !> report a failure (it enters as zero); the step is then undone.
         subroutine acceleration_iface(self, q, a, stat)
+            !! Accelerations a(:,j) of every particle j at positions q. Set `stat` non-zero to
+            !! report a failure (it enters as zero); the step is then undone.
             import :: force_model_t, wp
             implicit none
             class(force_model_t), intent(inout) :: self  !! the model (may keep counters)
@@ -40,12 +41,13 @@ module fsym_force
     !> `step`/`run`); it must not allocate if it is to keep the step allocation-free.
     type, abstract, public :: recorder_t
     contains
-        procedure(record_iface), deferred :: record
+        procedure(record_iface), deferred :: record     !! receive one evaluation point
     end type recorder_t
 
+    !> Interface of `recorder_t%record`.
     abstract interface
-        !> One evaluation: step number, stage of the scheme, kind (`EVAL_*`), position.
         subroutine record_iface(self, step, stage, kind, q)
+            !! One evaluation: step number, stage of the scheme, kind (`EVAL_*`), position.
             import :: recorder_t, wp, ik
             implicit none
             class(recorder_t), intent(inout) :: self  !! the recorder

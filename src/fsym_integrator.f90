@@ -22,12 +22,15 @@ module fsym_integrator
         logical :: ready = .false.
     contains
         procedure :: init => integrator_init
+            !! set up for a scheme, a model and arrays (d, n)
         procedure :: init_by_name => integrator_init_by_name
+            !! `init` with the method given by its label
         procedure :: step => integrator_step
-        procedure :: destroy => integrator_destroy
-        procedure :: scheme => integrator_scheme
-        procedure :: reset_cache => integrator_reset_cache
-        procedure :: work_size => integrator_work_size
+            !! one step of size h; on failure q, v unchanged
+        procedure :: destroy => integrator_destroy      !! release the workspace
+        procedure :: scheme => integrator_scheme        !! the scheme in use
+        procedure :: reset_cache => integrator_reset_cache  !! forget the cached end-of-step force
+        procedure :: work_size => integrator_work_size  !! reals of workspace held
     end type integrator_t
 
 contains

@@ -16,11 +16,11 @@ module fsym_kepler
     type, extends(force_model_t), public :: kepler_model_t
         real(wp) :: mu = 1.0_wp   !! gravitational parameter G M
     contains
-        procedure :: acceleration => kepler_model_acceleration
-        procedure :: gradient => kepler_model_gradient
-        procedure :: has_gradient => kepler_model_has_gradient
-        procedure :: potential => kepler_model_potential
-        procedure :: has_potential => kepler_model_has_potential
+        procedure :: acceleration => kepler_model_acceleration  !! -mu q/|q|^3 per column
+        procedure :: gradient => kepler_model_gradient  !! grad |a|^2 per column
+        procedure :: has_gradient => kepler_model_has_gradient  !! true
+        procedure :: potential => kepler_model_potential  !! sum of -mu/|q_j|
+        procedure :: has_potential => kepler_model_has_potential  !! true
     end type kepler_model_t
 
     public :: kepler_acceleration, kepler_gradient, kepler_potential, kepler_energy
@@ -155,7 +155,7 @@ contains
         do it = 1, 100
             dEk = (EE - e * sin(EE) - Mt) / (1.0_wp - e * cos(EE))
             EE = EE - dEk
-            if (abs(dEk) <= 4.0_wp * epsilon(1.0_wp) * max(1.0_wp, abs(EE))) then
+            if (abs(dEk) <= 16.0_wp * epsilon(1.0_wp) * max(1.0_wp, abs(EE))) then
                 stat = FSYM_SUCCESS; exit
             end if
         end do

@@ -26,7 +26,7 @@ module fsym_kernel
     ! requests returned by fsym_kernel_resume
     integer, parameter, public :: REQ_DONE = 0           !! the step is complete
     integer, parameter, public :: REQ_FORCE = 1          !! fill SLOT_A with a(q) at the state q
-    integer, parameter, public :: REQ_GRADIENT = 2       !! fill SLOT_G with g(q), given a(q) in SLOT_A
+    integer, parameter, public :: REQ_GRADIENT = 2       !! fill SLOT_G with g(q); a(q) is in SLOT_A
     integer, parameter, public :: REQ_FORCE_SHIFTED = 3  !! fill SLOT_AE with a(x), x in SLOT_QE
     integer, parameter, public :: REQ_ERROR = -1         !! failed; state restored, see stat
 
@@ -42,7 +42,7 @@ module fsym_kernel
     integer, parameter, public :: SLOT_VC = 9     !! compensation term of v
     integer, parameter, public :: SLOT_QC0 = 10   !! compensation of q on entry
     integer, parameter, public :: SLOT_VC0 = 11   !! compensation of v on entry
-    integer, parameter, public :: NSLOT_KINDS = 11
+    integer, parameter, public :: NSLOT_KINDS = 11  !! number of slot kinds
 
     ! integer state
     integer, parameter, public :: KW_PC = 1          !! next stage to run

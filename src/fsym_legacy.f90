@@ -60,7 +60,7 @@ end subroutine FSYMWK
 !> answer is rejected with INFO = 10 (FSYM_ERR_WORK_SIZE) and nothing is written.
 subroutine FSYMIN(METH, ND, N, RW, LRW, IW, LIW, INFO)
     use fsym_legacy_work, only: legacy_sizes, LEGACY_MAGIC
-    use fsym_status
+    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_WORK_SIZE
     use fsym_kinds, only: wp
     use fsym_scheme, only: scheme_t, fsym_scheme_by_name, fsym_catalogue
     use fsym_kernel, only: fsym_kernel_layout, KERNEL_NIW, KERNEL_NRW
@@ -101,9 +101,11 @@ end subroutine FSYMIN
 !> signature may be passed for the other methods; it is not called). On failure (INFO /= 0)
 !> X and V hold the state after the last completed step; IW(7) tells how many were done.
 subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
-    use fsym_status
+    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_NOT_INITIALIZED
     use fsym_kinds, only: wp, ik
-    use fsym_kernel
+    use fsym_kernel, only: fsym_kernel_begin, fsym_kernel_resume, fsym_kernel_slot, &
+                           KERNEL_NIW, KERNEL_NRW, SLOT_A, SLOT_G, SLOT_QE, SLOT_AE, &
+                           REQ_FORCE, REQ_GRADIENT, REQ_FORCE_SHIFTED
     use fsym_legacy_work, only: legacy_ok
     use fsym_legacy_api, only: fsym_legacy_accel, fsym_legacy_grad
     implicit none
@@ -169,9 +171,12 @@ end subroutine FSYMST
 !> Then call again with IREQ unchanged. Call with IREQ = -1 to abandon a step in progress
 !> (X, V restored). Do not change X or V while a step is in progress.
 subroutine FSYMRC(ND, N, X, V, H, RW, LRW, IW, LIW, IREQ, IPNT, INFO)
-    use fsym_status
+    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_NOT_INITIALIZED, FSYM_ERR_BAD_REQUEST
     use fsym_kinds, only: wp, ik
-    use fsym_kernel
+    use fsym_kernel, only: fsym_kernel_begin, fsym_kernel_resume, fsym_kernel_slot, &
+                           fsym_kernel_abort, KERNEL_NIW, KERNEL_NRW, KW_ACTIVE, KW_REQ, &
+                           SLOT_A, SLOT_G, SLOT_QE, SLOT_AE, REQ_DONE, REQ_ERROR, REQ_FORCE, &
+                           REQ_GRADIENT, REQ_FORCE_SHIFTED
     use fsym_legacy_work, only: legacy_ok
     implicit none
     integer, intent(in) :: ND, N                !! dimensions, bodies
@@ -224,6 +229,8 @@ subroutine FSYMRC(ND, N, X, V, H, RW, LRW, IW, LIW, IREQ, IPNT, INFO)
     case (REQ_FORCE_SHIFTED)
         IPNT(1) = kw + (fsym_kernel_slot(IW(8:), SLOT_QE) - 1) * m
         IPNT(2) = kw + (fsym_kernel_slot(IW(8:), SLOT_AE) - 1) * m
+    case default
+        continue      ! REQ_DONE or REQ_ERROR: nothing to point at
     end select
 end subroutine FSYMRC
 

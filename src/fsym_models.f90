@@ -10,22 +10,22 @@ module fsym_models
     type, extends(force_model_t), public :: oscillator_model_t
         real(wp) :: omega = 1.0_wp   !! angular frequency
     contains
-        procedure :: acceleration => osc_acceleration
-        procedure :: gradient => osc_gradient
-        procedure :: has_gradient => osc_has
-        procedure :: potential => osc_potential
-        procedure :: has_potential => osc_has
+        procedure :: acceleration => osc_acceleration   !! accelerations of every column
+        procedure :: gradient => osc_gradient           !! gradient term grad |a|^2
+        procedure :: has_gradient => osc_has            !! true
+        procedure :: potential => osc_potential         !! potential energy summed over columns
+        procedure :: has_potential => osc_has           !! true
     end type oscillator_model_t
 
     !> Henon-Heiles V = (x^2 + y^2)/2 + x^2 y - y^3/3 (2D, every column of q): a smooth
     !> non-central force.
     type, extends(force_model_t), public :: henon_heiles_model_t
     contains
-        procedure :: acceleration => hh_acceleration
-        procedure :: gradient => hh_gradient
-        procedure :: has_gradient => hh_has
-        procedure :: potential => hh_potential
-        procedure :: has_potential => hh_has
+        procedure :: acceleration => hh_acceleration    !! accelerations of every column
+        procedure :: gradient => hh_gradient            !! gradient term grad |a|^2
+        procedure :: has_gradient => hh_has             !! true
+        procedure :: potential => hh_potential          !! potential energy summed over columns
+        procedure :: has_potential => hh_has            !! true
     end type henon_heiles_model_t
 
 contains

@@ -18,7 +18,8 @@
 !> that writes the same loop gets the same bits.
 module fsym_nbody
     use fsym_kinds, only: wp
-    use fsym_status
+    use fsym_status, only: fsym_report, FSYM_SUCCESS, FSYM_ERR_SHAPE, FSYM_ERR_BAD_PARAMETER, &
+                           FSYM_ERR_NOT_INITIALIZED
     use fsym_force, only: force_model_t
     implicit none
     private

@@ -19,9 +19,9 @@ module fsym_rkn
         real(wp), allocatable :: f0(:, :), f1(:, :), f2(:, :), qt(:, :)
         logical :: ready = .false.
     contains
-        procedure :: init => rkn_init
-        procedure :: step => rkn_step
-        procedure :: destroy => rkn_destroy
+        procedure :: init => rkn_init                   !! set up for arrays (d, n)
+        procedure :: step => rkn_step                   !! one RKN step; on failure q, v unchanged
+        procedure :: destroy => rkn_destroy             !! release the workspace
     end type rkn_t
 
 contains

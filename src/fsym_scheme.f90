@@ -33,17 +33,19 @@ module fsym_scheme
         real(wp), allocatable :: c(:)           !! drift or kick weight of each stage
         real(wp), allocatable :: u(:)           !! gradient weight or extrapolation shift, else 0
         logical :: forward = .false.            !! all drift and kick weights >= 0
-        logical :: symplectic = .false.         !! exactly symplectic for every force (no extrapolation)
+        logical :: symplectic = .false.         !! symplectic for every force (no extrapolation)
         logical :: symmetric = .false.          !! palindromic table: time-reversible
         logical :: fsal = .false.               !! first and last stage share their force
         integer :: nforce = 0                   !! force evaluations per step (FSAL counted once)
         integer :: ngrad = 0                    !! gradient evaluations per step
     contains
         procedure :: needs_gradient => scheme_needs_gradient
+            !! true when any stage is a gradient kick
         procedure :: extrapolated => scheme_extrapolated
-        procedure :: describe => scheme_describe
-        procedure :: min_drift => scheme_min_drift
-        procedure :: min_kick => scheme_min_kick
+            !! the scheme with extrapolated kicks (A -> A')
+        procedure :: describe => scheme_describe        !! one text line per stage
+        procedure :: min_drift => scheme_min_drift      !! smallest drift weight
+        procedure :: min_kick => scheme_min_kick        !! smallest kick weight
     end type scheme_t
 
     public :: fsym_scheme_custom, fsym_scheme_by_name, fsym_catalogue, fsym_op_name
@@ -174,6 +176,8 @@ contains
                     if (.not. have_a) nforce = nforce + 1
                     if (.not. (have_x .and. x_shift == u(k))) nforce = nforce + 1
                     have_a = .true.; have_x = .true.; x_shift = u(k)
+                case default
+                    ! op codes are validated when a scheme is built
                 end select
             end do
         end do
@@ -354,7 +358,8 @@ contains
         logical, intent(in), optional :: extrapolated  !! build A' instead of A
         type(scheme_t) :: s
         call fsym_scheme_custom('A', [OP_KICK, OP_DRIFT, OP_GRAD_KICK, OP_DRIFT, OP_KICK], &
-                                [1.0_wp / 6.0_wp, 0.5_wp, 2.0_wp / 3.0_wp, 0.5_wp, 1.0_wp / 6.0_wp], &
+                                [1.0_wp / 6.0_wp, 0.5_wp, 2.0_wp / 3.0_wp, 0.5_wp, &
+                                 1.0_wp / 6.0_wp], &
                                 [0.0_wp, 0.0_wp, (2.0_wp / 3.0_wp) / 48.0_wp, 0.0_wp, 0.0_wp], 4, s)
         if (present(extrapolated)) then
             if (extrapolated) s = s%extrapolated()
@@ -461,7 +466,8 @@ contains
             call fsym_pass(st, msg, stat, errmsg); return
         end if
         call alternating_custom(family_label('M1', t1, name), 4, OP_DRIFT, &
-                                mirror_odd([t2, t1, t0]), mirror_even([v2, v1]), scheme, stat, errmsg)
+                                mirror_odd([t2, t1, t0]), mirror_even([v2, v1]), scheme, &
+                                stat, errmsg)
     end subroutine fsym_scheme_m1
 
     !> Non-forward family M2(t1) (paper eq. algm2, T and V exchanged, v2 of eq. v2m2), momentum
@@ -480,7 +486,8 @@ contains
             call fsym_pass(st, msg, stat, errmsg); return
         end if
         call alternating_custom(family_label('M2', t1, name), 4, OP_KICK, &
-                                mirror_odd([t2, t1, t0]), mirror_even([v2, v1]), scheme, stat, errmsg)
+                                mirror_odd([t2, t1, t0]), mirror_even([v2, v1]), scheme, &
+                                stat, errmsg)
     end subroutine fsym_scheme_m2
 
     !> Substep fractions (a0, a1, a2) of the five-stage family GFR5(alpha) (paper eq. gfr5).
@@ -494,7 +501,8 @@ contains
         a0 = 0.0_wp; a1 = 0.0_wp; a2 = 0.0_wp
         write (buf, '(g0.6)') alpha
         if (.not. (abs(alpha) <= 1.0e6_wp)) then
-            call fsym_report(FSYM_ERR_BAD_PARAMETER, 'GFR5 needs a finite alpha, |alpha| <= 1e6,'// &
+            call fsym_report(FSYM_ERR_BAD_PARAMETER, &
+                             'GFR5 needs a finite alpha, |alpha| <= 1e6,'// &
                              ' got '//trim(buf), stat, errmsg)
             return
         end if
@@ -679,7 +687,8 @@ contains
                 call fsym_scheme_an(n, s, stat=st, errmsg=msg)
             else
                 call fsym_report(FSYM_ERR_UNKNOWN_METHOD, '"'//trim(name)// &
-                                 '" (known: T2 FR A A'' C C'' AN AN'' M1 M1(t1) M2(t1) GFR5(alpha)'// &
+                                 '" (known: T2 FR A A'' C C'' AN AN'' M1 M1(t1) M2(t1)'// &
+                                 ' GFR5(alpha)'// &
                                  ' BM BM-mf SRKN6b; RKN is not a splitting)', stat, errmsg)
                 return
             end if
@@ -769,6 +778,7 @@ contains
             x = num / den
         else
             read (text, *, iostat=ios) x
+            if (ios /= 0) x = 0.0_wp
         end if
     end subroutine parse_real
 

@@ -20,29 +20,33 @@ module fsym_stepper
         real(wp) :: t_base = 0.0_wp          ! time when the step size last changed
         real(wp) :: h_now = 0.0_wp           ! current step size
     contains
-        procedure(step_iface), deferred :: step
-        procedure :: run => stepper_run
-        procedure :: time => stepper_time
-        procedure :: set_time => stepper_set_time
-        procedure :: steps => stepper_steps
-        procedure :: force_evaluations => stepper_force_evaluations
+        procedure(step_iface), deferred :: step         !! advance (q, v) by one step h
+        procedure :: run => stepper_run                 !! take nsteps steps
+        procedure :: time => stepper_time               !! current time
+        procedure :: set_time => stepper_set_time       !! set the clock
+        procedure :: steps => stepper_steps             !! steps completed since init
+        procedure :: force_evaluations => stepper_force_evaluations  !! force evaluations since init
         procedure :: gradient_evaluations => stepper_gradient_evaluations
-        procedure :: name => stepper_name
-        procedure :: is_splitting => stepper_is_splitting
-        procedure :: is_forward => stepper_is_forward
-        procedure :: is_symplectic => stepper_is_symplectic
-        procedure :: forces_per_step => stepper_forces_per_step
+            !! gradient evaluations since init
+        procedure :: name => stepper_name               !! method label
+        procedure :: is_splitting => stepper_is_splitting  !! true for splitting methods
+        procedure :: is_forward => stepper_is_forward   !! true for forward methods
+        procedure :: is_symplectic => stepper_is_symplectic  !! true when symplectic for every force
+        procedure :: forces_per_step => stepper_forces_per_step  !! force evaluations per step
         procedure :: gradients_per_step => stepper_gradients_per_step
-        procedure :: dims => stepper_dims
-        procedure :: describe_stepper
-        procedure :: count_step
+            !! gradient evaluations per step
+        procedure :: dims => stepper_dims               !! dimensions and particles
+        procedure :: describe_stepper                   !! for extensions: set description and shape
+        procedure :: count_step                         !! for extensions: one step completed
         procedure :: counters
+            !! for extensions: read or store the counters
     end type stepper_t
 
+    !> Interface of `stepper_t%step`.
     abstract interface
-        !> Advance (q, v) by one step h. On failure `stat` is non-zero, `errmsg` says why, and
-        !> q and v are exactly as they were on entry; the stepper stays usable.
         subroutine step_iface(self, model, q, v, h, stat, errmsg, recorder)
+            !! Advance (q, v) by one step h. On failure `stat` is non-zero, `errmsg` says why, and
+            !! q and v are exactly as they were on entry; the stepper stays usable.
             import :: stepper_t, force_model_t, recorder_t, wp
             implicit none
             class(stepper_t), intent(inout) :: self               !! the stepper

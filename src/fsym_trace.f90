@@ -19,9 +19,9 @@ module fsym_trace
         integer, allocatable :: kind(:)           !! `EVAL_*` kind of each point
         real(wp), allocatable :: q(:, :, :)       !! positions (d, n, capacity)
     contains
-        procedure :: init => trace_init
-        procedure :: record => trace_record
-        procedure :: clear => trace_clear
+        procedure :: init => trace_init                 !! allocate room for `capacity` points
+        procedure :: record => trace_record             !! store one point (or count it as dropped)
+        procedure :: clear => trace_clear               !! empty the buffer
     end type trace_recorder_t
 
 contains

@@ -11,6 +11,7 @@ program fsym_tests
     use test_badinput, only: collect_badinput
     use test_nbody, only: collect_nbody
     use test_legacy, only: collect_legacy
+    use test_study, only: collect_study
     implicit none
     type(test_t), allocatable :: tests(:)
     character(len=:), allocatable :: err
@@ -20,7 +21,8 @@ program fsym_tests
     filter = ''
     if (command_argument_count() > 0) call get_command_argument(1, filter)
     tests = [collect_scheme(), collect_kepler(), collect_integrator(), collect_errors(), &
-             collect_nbody(), collect_legacy(), collect_stability(), collect_badinput()]
+             collect_nbody(), collect_legacy(), collect_study(), collect_stability(), &
+             collect_badinput()]
     npass = 0; nfail = 0
     do k = 1, size(tests)
         if (len_trim(filter) > 0) then

@@ -90,7 +90,8 @@ contains
         call fsym_scheme_m2(ieee_value(1.0_wp, ieee_quiet_nan), s, st, msg)
         call check(err, st == FSYM_ERR_BAD_PARAMETER, 'M2(NaN)')
         call fsym_scheme_gfr5(-1.0_wp, s, st, msg)
-        call check(err, st == FSYM_ERR_BAD_PARAMETER .and. index(msg, 'denominator') > 0, 'GFR5(-1)')
+        call check(err, st == FSYM_ERR_BAD_PARAMETER .and. index(msg, 'denominator') > 0, &
+                   'GFR5(-1)')
         alpha = (-3.0_wp + sqrt(5.0_wp)) / 2.0_wp
         call fsym_scheme_gfr5(alpha, s, st, msg)
         call check(err, st == FSYM_ERR_BAD_PARAMETER, 'GFR5 at a root of alpha^2+3alpha+1')
@@ -158,7 +159,8 @@ contains
         v(2, 1) = ieee_value(1.0_wp, ieee_quiet_nan)
         v0 = v
         call it%step(kep, q, v, 0.01_wp, st, msg)
-        call check(err, st == FSYM_ERR_NONFINITE_STATE .and. len_trim(msg) > 0, 'NaN state accepted')
+        call check(err, st == FSYM_ERR_NONFINITE_STATE .and. len_trim(msg) > 0, &
+                   'NaN state accepted')
         call check(err, q(1, 1) == 1.0_wp .and. v(1, 1) == v0(1, 1), 'state changed')
         v(2, 1) = 1.0_wp
         call check_usable(err, it, 'C', q, v)

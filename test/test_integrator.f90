@@ -13,16 +13,20 @@ contains
     function collect_integrator() result(tests)
         type(test_t), allocatable :: tests(:)
         tests = [ &
-            new_test('order: every method on the e = 0.9 Kepler orbit (P/3200..P/12800)', t_order_kepler), &
+            new_test('order: every method on the e = 0.9 Kepler orbit (P/3200..P/12800)', &
+                     t_order_kepler), &
             new_test('order: every method on Henon-Heiles (h = 0.2..0.025)', t_order_hh), &
-            new_test('symplectic: M^T J M = J for every splitting method; not for RKN', t_symplectic), &
-            new_test('symplectic: extrapolated methods defect ~ h^5 on Henon-Heiles', t_extrap_defect), &
+            new_test('symplectic: M^T J M = J for every splitting method; not for RKN', &
+                     t_symplectic), &
+            new_test('symplectic: extrapolated methods defect ~ h^5 on Henon-Heiles', &
+                     t_extrap_defect), &
             new_test('reversible: symmetric methods return under h, -h', t_reversible), &
             new_test('counts: measured evaluations per step match the paper', t_counts), &
             new_test('counts: no gradient work for methods without gradient', t_no_gradient_work), &
             new_test('cache: first-same-as-last survives only an unchanged q', t_fsal_cache), &
             new_test('layout: 3D, n bodies equal n separate 1-body runs bitwise', t_particles), &
-            new_test('compensated: Kahan summation lowers round-off energy growth', t_compensated), &
+            new_test('compensated: Kahan summation lowers round-off energy growth', &
+                     t_compensated), &
             new_test('recorder: force points recorded, same result as without', t_recorder), &
             new_test('clock: time is t0 + k h', t_clock)]
     end function collect_integrator
@@ -289,8 +293,10 @@ contains
         type(kepler_model_t) :: kep
         real(wp) :: q(3, 3), v(3, 3), q1(3, 1), v1(3, 1), q0(3, 3), v0(3, 3)
         integer :: j, st
-        q0 = reshape([1.0_wp, 0.0_wp, 0.1_wp, 0.0_wp, 2.0_wp, 0.0_wp, -1.5_wp, 0.2_wp, 0.3_wp], [3, 3])
-        v0 = reshape([0.0_wp, 1.0_wp, 0.0_wp, -0.6_wp, 0.0_wp, 0.1_wp, 0.1_wp, -0.7_wp, 0.0_wp], [3, 3])
+        q0 = reshape([1.0_wp, 0.0_wp, 0.1_wp, 0.0_wp, 2.0_wp, 0.0_wp, -1.5_wp, 0.2_wp, 0.3_wp], &
+                     [3, 3])
+        v0 = reshape([0.0_wp, 1.0_wp, 0.0_wp, -0.6_wp, 0.0_wp, 0.1_wp, 0.1_wp, -0.7_wp, 0.0_wp], &
+                     [3, 3])
         q = q0; v = v0
         call all3%init_by_name('C', kep, 3, 3, st)
         call all3%run(kep, q, v, 0.01_wp, 300_ik, st)

@@ -30,7 +30,8 @@ contains
             do k = 1, d
                 qp = q; qm = q
                 qp(k) = q(k) + hh; qm(k) = q(k) - hh
-                fd = -(kepler_potential(qp(1:d), 2.5_wp) - kepler_potential(qm(1:d), 2.5_wp)) / (2 * hh)
+                fd = -(kepler_potential(qp(1:d), 2.5_wp) - kepler_potential(qm(1:d), 2.5_wp)) &
+                     / (2 * hh)
                 call check_close(err, a(k), fd, 1e-8_wp, 'a vs -dV/dq')
             end do
         end do
@@ -99,7 +100,8 @@ contains
         call kepler_exact(q0, v0, p, q, v, st)
         call check(err, maxval(abs(q - q0)) < 1e-10_wp, 'exact returns after one period')
         call kepler_exact(q0, v0, 0.5_wp * p, q, v, st)
-        call check_close(err, q(1), -10.0_wp / 19.0_wp, 1e-9_wp, 'pericentre at P/2 is (-a(1-e), 0)')
+        call check_close(err, q(1), -10.0_wp / 19.0_wp, 1e-9_wp, &
+                         'pericentre at P/2 is (-a(1-e), 0)')
     end subroutine t_exact
 
     subroutine t_exact_vs_a6(err)

@@ -242,11 +242,12 @@ contains
         real(c_double), intent(out) :: a(3, n)
         type(c_ptr), value :: user
         integer(c_int), pointer :: calls
+        c_accel = 1
+        if (d /= 3) return      ! refuse: this callback knows 3D only
         call fsym_nbody_accel(int(n), mass, gconst, 0.0_wp, q, a)
         call c_f_pointer(user, calls)
         calls = calls + 1
         c_accel = 0
-        if (d /= 3) c_accel = 1
     end function c_accel
 
     integer(c_int) function c_grad(d, n, q, a, g, user) bind(C)
@@ -295,6 +296,14 @@ contains
         call check(err, st == FSYM_ERR_UNKNOWN_METHOD, 'unknown name')
         st = fsym_c_step(c_null_ptr, c_loc(x), c_loc(y), 1.0_c_double, 1_c_int)
         call check(err, st == FSYM_ERR_NOT_INITIALIZED, 'NULL handle')
+        ! a callback that reports failure: status FSYM_ERR_MODEL, state unchanged
+        st = fsym_c_create('FR'//c_null_char, 2_c_int, int(nb, c_int), c_funloc(c_accel), &
+                           c_null_funptr, c_loc(calls), h)
+        x = x0; y = v0
+        st = st + fsym_c_step(h, c_loc(x), c_loc(y), 1.0_c_double, 3_c_int)
+        call fsym_c_destroy(h)
+        call check(err, st == FSYM_ERR_MODEL .and. all(x == x0) .and. all(y == v0), &
+                   'failing callback')
     end subroutine t_capi
 
 end module test_legacy

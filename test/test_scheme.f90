@@ -98,13 +98,15 @@ contains
         call fsym_gfr5_coefficients(1.0_wp, a0, a1, a2, st)
         call check_close(err, a1, 1.0_wp / (4.0_wp - 4.0_wp**(1.0_wp / 3.0_wp)), 1e-14_wp, &
                          'GFR5(1) a1 (eq. susumc)')
-        call check_close(err, a0, -4.0_wp**(1.0_wp / 3.0_wp) / (4.0_wp - 4.0_wp**(1.0_wp / 3.0_wp)), &
+        call check_close(err, a0, &
+                         -4.0_wp**(1.0_wp / 3.0_wp) / (4.0_wp - 4.0_wp**(1.0_wp / 3.0_wp)), &
                          1e-14_wp, 'GFR5(1) a0')
         call check_close(err, a2, a1, 1e-15_wp, 'GFR5(1) a2 = a1')
         do st = 0, 20
             call fsym_gfr5_coefficients(0.1_wp * st, a0, a1, a2)
             call check_close(err, a0 + 2 * a1 + 2 * a2, 1.0_wp, 1e-13_wp, 'GFR5 sum a = 1')
-            call check_close(err, a0**3 + 2 * a1**3 + 2 * a2**3, 0.0_wp, 1e-12_wp, 'GFR5 sum a^3 = 0')
+            call check_close(err, a0**3 + 2 * a1**3 + 2 * a2**3, 0.0_wp, 1e-12_wp, &
+                             'GFR5 sum a^3 = 0')
         end do
         ! a0 is least negative at alpha = 1 (paper, Fig. acoef)
         call fsym_gfr5_coefficients(0.9_wp, a0, a1, a2)
@@ -155,13 +157,15 @@ contains
                 if (s%op(k) == OP_DRIFT) call check_close(err, s%c(k), 1.0_wp / (n - 1), &
                                                           1e-15_wp, 'AN drift')
                 if (s%op(k) == OP_KICK) call check_close(err, s%c(k), &
-                                                         real(n - 1, wp) / (n * (n - 2)), 1e-15_wp, 'AN kick')
+                                                         real(n - 1, wp) / (n * (n - 2)), &
+                                                         1e-15_wp, 'AN kick')
             end do
             sp = s%extrapolated()
             call check(err, sp%op(1) == OP_EXTRAP_KICK, 'AN'' end kicks extrapolated')
             call check_close(err, sp%u(1), 1.0_wp / (12.0_wp * (n - 2)), 1e-15_wp, &
                              'AN'' shift eps^2/(12(N-2))')
-            call check(err, .not. sp%symplectic .and. s%symplectic, 'AN symplectic, AN'' not exactly')
+            call check(err, .not. sp%symplectic .and. s%symplectic, &
+                       'AN symplectic, AN'' not exactly')
         end do
         sp = fsym_scheme_a(extrapolated=.true.)
         call check_close(err, sp%u(3), 1.0_wp / 24.0_wp, 1e-15_wp, 'A'' shift 1/24 (eq. modfaex)')
@@ -192,7 +196,8 @@ contains
         type(scheme_t) :: s
         integer :: st
         character(len=200) :: msg
-        call fsym_scheme_custom('leapfrog', [OP_DRIFT, OP_KICK, OP_DRIFT], [0.5_wp, 1.0_wp, 0.5_wp], &
+        call fsym_scheme_custom('leapfrog', [OP_DRIFT, OP_KICK, OP_DRIFT], &
+                                [0.5_wp, 1.0_wp, 0.5_wp], &
                                 [0.0_wp, 0.0_wp, 0.0_wp], 2, s, st, msg)
         call check(err, st == 0 .and. s%nforce == 1 .and. s%forward, 'custom leapfrog')
         msg = ''
