@@ -10,7 +10,7 @@
 !> (y likewise from p); the oscillatory energies are I_j = (y_{1,j}^2 + omega^2 x_{1,j}^2)/2.
 module fsym_fpu
     use fsym_kinds, only: wp
-    use fsym_status
+    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_PARAMETER, fsym_report
     use fsym_force, only: force_model_t
     implicit none
     private

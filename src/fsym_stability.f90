@@ -11,7 +11,8 @@
 !>   model's frequencies by `dsyev`; and the largest stable step.
 module fsym_stability
     use fsym_kinds, only: wp
-    use fsym_status
+    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_SHAPE, FSYM_ERR_NONFINITE_STATE, FSYM_ERR_MODEL, &
+                           FSYM_ERR_LAPACK, fsym_report, fsym_pass
     use fsym_scheme, only: scheme_t, OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
     use fsym_force, only: force_model_t
     use fsym_stepper, only: stepper_t

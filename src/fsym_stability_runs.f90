@@ -4,7 +4,7 @@
 !> energy and the oscillatory energies of the stiff springs.
 module fsym_stability_runs
     use fsym_kinds, only: wp, ik
-    use fsym_status
+    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_NONFINITE_STATE
     use fsym_stepper, only: stepper_t
     use fsym_methods, only: fsym_new_stepper
     use fsym_models, only: oscillator_model_t
