@@ -518,7 +518,9 @@ contains
         write (u, '(a)') '## 6. Long time', '', &
             ifmt(nperiods)//' periods of the e = 0.9 orbit at h = P/1000 ('// &
             ifmt(1000_ik * nperiods)//' steps per method; the issue asks for 1e6 periods, '// &
-            'run `fsym-stability --periods 1000000` for that, about 10 min per method here). '// &
+            'run `fsym-stability --periods 1000000` for that: '// &
+            rfmt(maxval(long_secs(1:3)) * 1.0e6_wp / real(nperiods, wp) / 60.0_wp, 'f6.1')// &
+            ' min of CPU per splitting method, scaled from this run). '// &
             'Energy and angular momentum checked after every step; the slope is the '// &
             'least-squares fit of dE/E at the period ends against the period number. '// &
             'Time is t0 + n h.', '', &
