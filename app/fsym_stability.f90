@@ -197,8 +197,8 @@ contains
                 h = fracs(i) * xstar(k) / fpu_omega
                 nsteps = nint(fpu_t / h, ik)
                 call fsym_fpu_run(trim(names(k)), fpu_m, fpu_omega, h, nsteps, &
-                                  max(1_ik, (nsteps + nsamp - 2) / (nsamp - 1)), fpu_samples(:, :, i, k), &
-                                  fpu_ns(i, k), fpu_dh(i, k), fpu_di(i, k), fpu_stat(i, k), msg)
+                                  max(1_ik, (nsteps + nsamp - 2) / (nsamp - 1)), &
+                                  fpu_samples(:, :, i, k), fpu_ns(i, k), fpu_dh(i, k), fpu_di(i, k), fpu_stat(i, k), msg)
             end do
         end do
         call say('FPU: energy error against h omega (resonance scan)')
@@ -441,7 +441,8 @@ contains
             'I at t = '//rfmt(fpu_t, 'f6.1')//' (I_1(0) = 1, I_2(0) = I_3(0) = 0; the exact '// &
             'flow moves energy from spring 1 to 2 and 3 on the slow time scale t ~ omega; the '// &
             'values at t = 200 differ between methods and steps because the slow dynamics is '// &
-            'sensitive):', '', '| method | f | I_1 | I_2 | I_3 | I |', '|---|---:|---:|---:|---:|---:|'
+            'sensitive):', '', '| method | f | I_1 | I_2 | I_3 | I |', &
+            '|---|---:|---:|---:|---:|---:|'
         do k = 1, nm
             do i = 1, 2
                 if (fpu_stat(i, k) /= 0 .or. fpu_ns(i, k) < 1) cycle
