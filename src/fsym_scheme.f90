@@ -458,16 +458,8 @@ contains
         integer, intent(out), optional :: stat          !! status code
         character(len=*), intent(inout), optional :: errmsg  !! message on error
         character(len=*), intent(in), optional :: name  !! label (default `M1(t1)`)
-        real(wp) :: t0, t2, v1, v2
-        integer :: st
-        character(len=256) :: msg
-        call fsym_m1_coefficients(t1, +1, t0, t2, v1, v2, st, msg)
-        if (st /= FSYM_SUCCESS) then
-            call fsym_pass(st, msg, stat, errmsg); return
-        end if
-        call alternating_custom(family_label('M1', t1, name), 4, OP_DRIFT, &
-                                mirror_odd([t2, t1, t0]), mirror_even([v2, v1]), scheme, &
-                                stat, errmsg)
+        call mclachlan_family(t1, +1, OP_DRIFT, family_label('M1', t1, name), scheme, stat, &
+                              errmsg)
     end subroutine fsym_scheme_m1
 
     !> Non-forward family M2(t1) (paper eq. algm2, T and V exchanged, v2 of eq. v2m2), momentum
@@ -478,17 +470,30 @@ contains
         integer, intent(out), optional :: stat          !! status code
         character(len=*), intent(inout), optional :: errmsg  !! message on error
         character(len=*), intent(in), optional :: name  !! label (default `M2(t1)`)
+        call mclachlan_family(t1, -1, OP_KICK, family_label('M2', t1, name), scheme, stat, &
+                              errmsg)
+    end subroutine fsym_scheme_m2
+
+    !> The four-force family of eqs. algm1/algm2: branch +1 with drifts first (M1), branch -1
+    !> with kicks first (M2); outer weights t2 t1 t0 t1 t2, inner v2 v1 v1 v2.
+    subroutine mclachlan_family(t1, branch, first, label, scheme, stat, errmsg)
+        real(wp), intent(in) :: t1
+        integer, intent(in) :: branch, first
+        character(len=*), intent(in) :: label
+        type(scheme_t), intent(inout) :: scheme
+        integer, intent(out), optional :: stat
+        character(len=*), intent(inout), optional :: errmsg
         real(wp) :: t0, t2, v1, v2
         integer :: st
         character(len=256) :: msg
-        call fsym_m1_coefficients(t1, -1, t0, t2, v1, v2, st, msg)
+        call fsym_m1_coefficients(t1, branch, t0, t2, v1, v2, st, msg)
         if (st /= FSYM_SUCCESS) then
-            call fsym_pass(st, msg, stat, errmsg); return
+            call fsym_pass(st, msg, stat, errmsg)
+            return
         end if
-        call alternating_custom(family_label('M2', t1, name), 4, OP_KICK, &
-                                mirror_odd([t2, t1, t0]), mirror_even([v2, v1]), scheme, &
-                                stat, errmsg)
-    end subroutine fsym_scheme_m2
+        call alternating_custom(label, 4, first, mirror_odd([t2, t1, t0]), &
+                                mirror_even([v2, v1]), scheme, stat, errmsg)
+    end subroutine mclachlan_family
 
     !> Substep fractions (a0, a1, a2) of the five-stage family GFR5(alpha) (paper eq. gfr5).
     subroutine fsym_gfr5_coefficients(alpha, a0, a1, a2, stat, errmsg)
