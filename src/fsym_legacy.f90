@@ -124,10 +124,12 @@ subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
     integer(ik) :: nf, ng
     logical :: ok
     ok = legacy_ok(ND, N, LRW, LIW, IW)
-    IW(7) = 0
     if (.not. ok) then
-        INFO = FSYM_ERR_NOT_INITIALIZED; return
+        ! IW may be shorter than 7 here: write nothing into it
+        INFO = FSYM_ERR_NOT_INITIALIZED
+        return
     end if
+    IW(7) = 0
     nop = IW(4); nslot = IW(5)
     ko = 8 + KERNEL_NIW; kc = KERNEL_NRW + 3; kw = kc + 2 * nop
     m = ND * N

@@ -216,6 +216,11 @@ contains
         x = x0; y = v0
         call FSYMST(3, nb, x, y, hstep, 1, accel, grad, rw, lrw, iw, liw, info)
         call check(err, info == FSYM_ERR_NOT_INITIALIZED, 'FSYMST without FSYMIN')
+        ! an integer work array of length 3: refused without writing past it
+        iw(1:4) = [11, 12, 13, 14]
+        call FSYMST(3, nb, x, y, hstep, 1, accel, grad, rw, lrw, iw(1:3), 3, info)
+        call check(err, info == FSYM_ERR_NOT_INITIALIZED .and. &
+                   all(iw(1:4) == [11, 12, 13, 14]), 'FSYMST with LIW = 3 wrote into IW')
         call FSYMIN(3, 3, nb, rw, lrw, iw, liw, info)
         call FSYMST(3, nb + 1, x, y, hstep, 1, accel, grad, rw, lrw, iw, liw, info)
         call check(err, info == FSYM_ERR_NOT_INITIALIZED, 'FSYMST with another N')
