@@ -49,7 +49,7 @@ program fsym_bench
 
 contains
 
-    !> Library step against the hand loop: FR, A, C, A6, BM at eps = P/1000.
+    !> Library against the hand loop: FR, A, C, A6, BM at eps = P/1000.
     subroutine bench_overhead()
         character(len=4), parameter :: names(5) = [character(len=4) :: 'FR', 'A', 'C', 'A6', 'BM']
         integer, parameter :: nrep = 7
@@ -58,35 +58,40 @@ contains
         type(kepler_model_t) :: model
         type(general_kepler_t) :: general
         type(scheme_t) :: s
-        real(wp) :: q0(2), v0(2), period, h, q(2, 1), v(2, 1), qh(2), vh(2)
-        real(wp) :: tlib(nrep), thand(nrep), tgen(nrep), tl, th, tg, nfe, dq, qlib(2)
+        real(wp) :: q0(2), v0(2), period, h, q(2, 1), v(2, 1), qh(2), vh(2), qrun(2), qstep(2)
+        real(wp) :: trun(nrep), tstep(nrep), thand(nrep), tgen(nrep), tr, ts, th, tg, nfe, dq
         integer(int64) :: t0
         integer :: m, r, st
-        integer(ik) :: k
 
         call kepler_paper_orbit(q0, v0, period)
         h = period / 1000.0_wp
-        write (output_unit, '(a)') '## Engine overhead: library step vs hand-written loop', ''
+        write (output_unit, '(a)') '## Engine overhead: library against a hand-written loop', ''
         write (output_unit, '(a,i0,a,i0,a)') 'Paper orbit (e = 0.9), eps = P/1000, ', nsteps, &
-            ' steps per run, median of ', nrep, ' runs. Library = `integrator_t%step` with'// &
-            ' `kepler_model_t` (the kernel''s Kepler path); general = the same with an'// &
-            ' extension of `kepler_model_t` (reverse communication, type-bound force, as for'// &
-            ' any user model); hand = hand-written inlined loop (app/fsym_handloops.f90).'// &
+            ' steps per run, median of ', nrep, ' runs, all on one body (d = 2, n = 1).'// &
+            ' `run` = one call `integrator_t%run(model, q, v, h, nsteps)` with'// &
+            ' `kepler_model_t` (the kernel''s Kepler path takes every step without returning);'// &
+            ' `step` = a loop of `integrator_t%step` calls, one per step (the same path, one'// &
+            ' call and its checks per step); general = the loop of `step` with an extension of'// &
+            ' `kepler_model_t` (reverse communication, type-bound force, as for any user'// &
+            ' model); hand = hand-written inlined loop (app/fsym_handloops.f90).'// &
             ' `nF` = force + gradient evaluations per step (a gradient counted as one).'// &
-            ' `abs(dq)` = max difference of the end positions library vs hand loop.'
+            ' `abs(dq)` = max difference of the end positions of `run` and of `step` against'// &
+            ' the hand loop.'
         write (output_unit, '(a)') '', &
-            '| method | nF/step | library ns/step | general ns/step | hand ns/step | '// &
-            'library ns/eval | hand ns/eval | ratio library/hand | ratio general/hand | '// &
-            'abs(dq) |', '|---|---|---|---|---|---|---|---|---|---|'
+            '| method | nF/step | run ns/step | step ns/step | general ns/step | hand ns/step |'// &
+            ' run ns/eval | hand ns/eval | ratio run/hand | ratio step/hand | '// &
+            'ratio general/hand | abs(dq) |', '|---|---|---|---|---|---|---|---|---|---|---|---|'
         do m = 1, size(names)
             call fsym_scheme_by_name(names(m), s)
             call integ%init(s, model, 2, 1, st)
             do r = 1, nrep
-                call timed_steps(integ, s, model, q0, v0, h, nsteps, q, v, tlib(r))    ! library
-                qlib = q(:, 1)
+                call timed_steps(integ, s, model, q0, v0, h, nsteps, .true., q, v, trun(r))
+                qrun = q(:, 1)
                 nfe = real(integ%force_evaluations() + integ%gradient_evaluations(), wp) / &
                       real(nsteps, wp)
-                call timed_steps(integ, s, general, q0, v0, h, nsteps, q, v, tgen(r))  ! general
+                call timed_steps(integ, s, model, q0, v0, h, nsteps, .false., q, v, tstep(r))
+                qstep = q(:, 1)
+                call timed_steps(integ, s, general, q0, v0, h, nsteps, .false., q, v, tgen(r))
                 ! hand loop
                 qh = q0; vh = v0
                 call system_clock(t0)
@@ -104,34 +109,42 @@ contains
                 end select
                 thand(r) = seconds_since(t0)
             end do
-            dq = maxval(abs(qlib - qh))
-            tl = median(tlib) / real(nsteps, wp) * 1.0e9_wp
+            dq = max(maxval(abs(qrun - qh)), maxval(abs(qstep - qh)))
+            tr = median(trun) / real(nsteps, wp) * 1.0e9_wp
+            ts = median(tstep) / real(nsteps, wp) * 1.0e9_wp
             th = median(thand) / real(nsteps, wp) * 1.0e9_wp
             tg = median(tgen) / real(nsteps, wp) * 1.0e9_wp
-            write (output_unit, '(a,f0.3,5(a,f0.2),2(a,f0.3),a,es9.2,a)') &
-                '| '//trim(names(m))//' | ', nfe, ' | ', tl, ' | ', tg, ' | ', th, ' | ', &
-                tl / nfe, ' | ', th / nfe, ' | ', tl / th, ' | ', tg / th, ' | ', dq, ' |'
+            write (output_unit, '(a,f0.3,6(a,f0.2),3(a,f0.3),a,es9.2,a)') &
+                '| '//trim(names(m))//' | ', nfe, ' | ', tr, ' | ', ts, ' | ', tg, ' | ', th, &
+                ' | ', tr / nfe, ' | ', th / nfe, ' | ', tr / th, ' | ', ts / th, ' | ', &
+                tg / th, ' | ', dq, ' |'
         end do
         write (output_unit, '(a)') ''
 
     end subroutine bench_overhead
 
-    !> nsteps library steps of scheme s with `mdl` from (q0, v0); their time t.
-    subroutine timed_steps(integ, s, mdl, q0, v0, h, nsteps, q, v, t)
+    !> nsteps library steps of scheme s with `mdl` from (q0, v0), in one `run` call or in
+    !> a loop of `step` calls; their time t.
+    subroutine timed_steps(integ, s, mdl, q0, v0, h, nsteps, one_call, q, v, t)
         type(integrator_t), intent(inout) :: integ
         type(scheme_t), intent(in) :: s
         class(force_model_t), intent(inout) :: mdl
         real(wp), intent(in) :: q0(2), v0(2), h
         integer(ik), intent(in) :: nsteps
+        logical, intent(in) :: one_call
         real(wp), intent(out) :: q(2, 1), v(2, 1), t
         integer(int64) :: t0
         integer(ik) :: k
         call integ%init(s, mdl, 2, 1)
         q(:, 1) = q0; v(:, 1) = v0
         call system_clock(t0)
-        do k = 1, nsteps
-            call integ%step(mdl, q, v, h)
-        end do
+        if (one_call) then
+            call integ%run(mdl, q, v, h, nsteps)
+        else
+            do k = 1, nsteps
+                call integ%step(mdl, q, v, h)
+            end do
+        end if
         t = seconds_since(t0)
     end subroutine timed_steps
 

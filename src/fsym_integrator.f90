@@ -6,7 +6,7 @@ module fsym_integrator
     use fsym_scheme, only: scheme_t, fsym_scheme_custom, fsym_scheme_by_name, fsym_op_name
     use fsym_force, only: force_model_t, recorder_t, EVAL_FORCE, EVAL_GRADIENT, &
                           EVAL_EXTRAPOLATED
-    use fsym_stepper, only: stepper_t
+    use fsym_stepper, only: stepper_t, stepper_run
     use fsym_kernel
     use fsym_kepler, only: kepler_model_t
     implicit none
@@ -29,6 +29,8 @@ module fsym_integrator
             !! `init` with the method given by its label
         procedure :: step => integrator_step
             !! one step of size h; on failure q, v unchanged
+        procedure :: run => integrator_run
+            !! nsteps steps of size h; stops at the first failing step
         procedure :: destroy => integrator_destroy      !! release the workspace
         procedure :: scheme => integrator_scheme        !! the scheme in use
         procedure :: reset_cache => integrator_reset_cache  !! forget the cached end-of-step force
@@ -143,25 +145,11 @@ contains
         if (size(q, 1) /= d .or. size(q, 2) /= n .or. size(v, 1) /= d .or. size(v, 2) /= n) then
             call fsym_report(FSYM_ERR_SHAPE, shape_text(d, n, q, v), stat, errmsg); return
         end if
-        ! Specialised path for the library's Kepler model (exactly that type, not extensions of
-        ! it, which may override the force): the kernel runs the whole step with the force
-        ! called directly (no reverse communication, no dynamic dispatch per force); same
-        ! stage arithmetic, bitwise the same result as the general path below. That model has
-        ! the gradient term, so the check below is not needed here.
+        ! Specialised path for the library's Kepler model: see `kepler_steps`
         if (.not. (present(recorder) .or. self%iw(KW_COMP) /= 0)) then
             select type (model)
             type is (kepler_model_t)
-                call self%counters(nf, ng, 0)
-                call fsym_kernel_step_kepler(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, d, &
-                                             n, q, v, h, model%mu, self%w, self%nslot, self%iw, &
-                                             self%rw, nf, ng, st)
-                call self%counters(nf, ng, 1)
-                if (st /= FSYM_SUCCESS) then
-                    call report_failure(self%iw(KW_PC) == 0)
-                    return
-                end if
-                call self%count_step(h)
-                if (present(stat)) stat = FSYM_SUCCESS
+                call kepler_steps(self, model, d, n, q, v, h, 1_ik, stat, errmsg)
                 return
             end select
         end if
@@ -174,7 +162,7 @@ contains
         end if
         call fsym_kernel_begin(d, n, q, v, h, self%w, self%nslot, self%iw, self%rw, st)
         if (st /= FSYM_SUCCESS) then
-            call report_failure(.true.); return
+            call report_step_failure(self, st, .true., stat, errmsg); return
         end if
         ia = fsym_kernel_slot(self%iw, SLOT_A); ig = fsym_kernel_slot(self%iw, SLOT_G)
         iqe = fsym_kernel_slot(self%iw, SLOT_QE); iae = fsym_kernel_slot(self%iw, SLOT_AE)
@@ -207,29 +195,92 @@ contains
         end do
         call self%counters(nf, ng, 1)
         if (st /= FSYM_SUCCESS) then
-            call report_failure(.false.); return
+            call report_step_failure(self, st, .false., stat, errmsg); return
         end if
         call self%count_step(h)
         if (present(stat)) stat = FSYM_SUCCESS
 
-    contains
-
-        !> Report a failed step (at the start of the step when `at_begin`).
-        subroutine report_failure(at_begin)
-            logical, intent(in) :: at_begin
-            if (at_begin) then
-                call fsym_report(st, 'method '//self%sc%name//', step '// &
-                                 itoa(self%steps() + 1), stat, errmsg)
-            else
-                call fsym_report(st, 'method '//self%sc%name//', step '// &
-                                 itoa(self%steps() + 1)//', stage '// &
-                                 itoa(int(self%iw(KW_PC), ik))//' ('// &
-                                 fsym_op_name(self%sc%op(min(self%iw(KW_PC), self%sc%nop)))// &
-                                 '); state restored', stat, errmsg)
-            end if
-        end subroutine report_failure
-
     end subroutine integrator_step
+
+    !> `nsteps` steps of size h; stops at the first failing step, leaving the state of the
+    !> last good step (check `stat`; `steps()` tells how far it got). Bitwise the same as
+    !> `nsteps` calls of `step`; for the library's `kepler_model_t` the kernel takes all the
+    !> steps in one call (see `kepler_steps`).
+    subroutine integrator_run(self, model, q, v, h, nsteps, stat, errmsg, recorder)
+        class(integrator_t), intent(inout) :: self            !! the integrator
+        class(force_model_t), intent(inout) :: model          !! force model
+        real(wp), intent(inout), contiguous :: q(:, :)        !! positions (d, n)
+        real(wp), intent(inout), contiguous :: v(:, :)        !! velocities (d, n)
+        real(wp), intent(in) :: h                             !! step
+        integer(ik), intent(in) :: nsteps                     !! number of steps
+        integer, intent(out), optional :: stat                !! status code
+        character(len=*), intent(inout), optional :: errmsg   !! message on error
+        class(recorder_t), intent(inout), optional :: recorder  !! force-point recorder
+        integer :: d, n
+        if (self%ready .and. .not. (present(recorder) .or. self%iw(KW_COMP) /= 0)) then
+            select type (model)
+            type is (kepler_model_t)
+                call self%dims(d, n)
+                if (size(q, 1) /= d .or. size(q, 2) /= n .or. size(v, 1) /= d .or. &
+                    size(v, 2) /= n) then
+                    call fsym_report(FSYM_ERR_SHAPE, shape_text(d, n, q, v), stat, errmsg)
+                    return
+                end if
+                call kepler_steps(self, model, d, n, q, v, h, nsteps, stat, errmsg)
+                return
+            end select
+        end if
+        call stepper_run(self, model, q, v, h, nsteps, stat, errmsg, recorder)
+    end subroutine integrator_run
+
+    !> The specialised path for the library's Kepler model (exactly that type, not its
+    !> extensions, which may override the force), without recorder or compensation: the
+    !> kernel takes all `nsteps` steps in one call with the force called directly (no
+    !> reverse communication, no dynamic dispatch per force, no return between steps); the
+    !> same stage arithmetic as the general path, bitwise the same result. That model has
+    !> the gradient term, so no check for it is needed.
+    subroutine kepler_steps(self, model, d, n, q, v, h, nsteps, stat, errmsg)
+        class(integrator_t), intent(inout) :: self
+        type(kepler_model_t), intent(in) :: model
+        integer, intent(in) :: d, n
+        real(wp), intent(inout) :: q(d, n), v(d, n)
+        real(wp), intent(in) :: h
+        integer(ik), intent(in) :: nsteps
+        integer, intent(out), optional :: stat
+        character(len=*), intent(inout), optional :: errmsg
+        integer(ik) :: nf, ng, ndone
+        integer :: st
+        call self%counters(nf, ng, 0)
+        call fsym_kernel_run_kepler(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, d, n, q, v, &
+                                    h, model%mu, nsteps, self%w, self%nslot, self%iw, self%rw, &
+                                    nf, ng, ndone, st)
+        call self%counters(nf, ng, 1)
+        call self%count_step(h, ndone)
+        if (st /= FSYM_SUCCESS) then
+            call report_step_failure(self, st, self%iw(KW_PC) == 0, stat, errmsg)
+            return
+        end if
+        if (present(stat)) stat = FSYM_SUCCESS
+    end subroutine kepler_steps
+
+    !> Report a failed step (rejected on entry when `at_begin`).
+    subroutine report_step_failure(self, st, at_begin, stat, errmsg)
+        class(integrator_t), intent(in) :: self
+        integer, intent(in) :: st
+        logical, intent(in) :: at_begin
+        integer, intent(out), optional :: stat
+        character(len=*), intent(inout), optional :: errmsg
+        if (at_begin) then
+            call fsym_report(st, 'method '//self%sc%name//', step '// &
+                             itoa(self%steps() + 1), stat, errmsg)
+        else
+            call fsym_report(st, 'method '//self%sc%name//', step '// &
+                             itoa(self%steps() + 1)//', stage '// &
+                             itoa(int(self%iw(KW_PC), ik))//' ('// &
+                             fsym_op_name(self%sc%op(min(self%iw(KW_PC), self%sc%nop)))// &
+                             '); state restored', stat, errmsg)
+        end if
+    end subroutine report_step_failure
 
     !> Release the workspace; `init` must be called again before use.
     subroutine integrator_destroy(self)

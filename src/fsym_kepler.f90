@@ -12,6 +12,9 @@ module fsym_kepler
 
     real(wp), parameter, public :: FSYM_PI = 3.14159265358979323846264338327950288_wp  !! pi
 
+    ! bodies per block of `kepler_field` and `kepler_field_gradient`
+    integer, parameter :: FIELD_BLOCK = 64
+
     !> Kepler force model: each column of q is a body attracted by mu at the origin.
     type, extends(force_model_t), public :: kepler_model_t
         real(wp) :: mu = 1.0_wp   !! gravitational parameter G M
@@ -219,38 +222,13 @@ contains
     end subroutine kepler_model_gradient
 
     !> Accelerations -mu q_j/|q_j|^3 of n independent bodies on explicit arrays: the one
-    !> Kepler force of the library (the model and the kernel's Kepler path call it). The
-    !> planar and spatial cases are written out so that the loop over bodies vectorises.
+    !> Kepler force of the library (the model and the kernel's Kepler path call it).
     pure subroutine kepler_field(d, n, mu, q, a)
         integer, intent(in) :: d, n               !! dimensions, bodies
         real(wp), intent(in) :: mu                !! G M
         real(wp), intent(in) :: q(d, n)           !! positions
         real(wp), intent(out) :: a(d, n)          !! accelerations
-        integer :: j
-        real(wp) :: r2, s
-        select case (d)
-        case (2)
-            do j = 1, n
-                r2 = q(1, j)**2 + q(2, j)**2
-                s = -mu / (r2 * sqrt(r2))
-                a(1, j) = s * q(1, j)
-                a(2, j) = s * q(2, j)
-            end do
-        case (3)
-            do j = 1, n
-                r2 = q(1, j)**2 + q(2, j)**2 + q(3, j)**2
-                s = -mu / (r2 * sqrt(r2))
-                a(1, j) = s * q(1, j)
-                a(2, j) = s * q(2, j)
-                a(3, j) = s * q(3, j)
-            end do
-        case default
-            do j = 1, n
-                r2 = sum(q(:, j)**2)
-                s = -mu / (r2 * sqrt(r2))
-                a(:, j) = s * q(:, j)
-            end do
-        end select
+        call scaled_columns(d, n, -mu, q, q, a)
     end subroutine kepler_field
 
     !> Gradient term g_j = 4 mu a_j/|q_j|^3 (= -4 mu^2 q_j/|q_j|^6) on explicit arrays, given
@@ -261,32 +239,59 @@ contains
         real(wp), intent(in) :: q(d, n)           !! positions
         real(wp), intent(in) :: a(d, n)           !! accelerations at q
         real(wp), intent(out) :: g(d, n)          !! gradient term
-        integer :: j
-        real(wp) :: r2, s
-        select case (d)
-        case (2)
-            do j = 1, n
-                r2 = q(1, j)**2 + q(2, j)**2
-                s = 4.0_wp * mu / (r2 * sqrt(r2))
-                g(1, j) = s * a(1, j)
-                g(2, j) = s * a(2, j)
-            end do
-        case (3)
-            do j = 1, n
-                r2 = q(1, j)**2 + q(2, j)**2 + q(3, j)**2
-                s = 4.0_wp * mu / (r2 * sqrt(r2))
-                g(1, j) = s * a(1, j)
-                g(2, j) = s * a(2, j)
-                g(3, j) = s * a(3, j)
-            end do
-        case default
-            do j = 1, n
-                r2 = sum(q(:, j)**2)
-                s = 4.0_wp * mu / (r2 * sqrt(r2))
-                g(:, j) = s * a(:, j)
-            end do
-        end select
+        call scaled_columns(d, n, 4.0_wp * mu, q, a, g)
     end subroutine kepler_field_gradient
+
+    !> y_j = (c / |q_j|^3) x_j for every column j. Works on blocks of `FIELD_BLOCK` bodies
+    !> in three passes (|q|^2, the factor, the product), each a simple loop that vectorises;
+    !> a single loop doing all three keeps the strided loads and stores of (d, n) arrays in
+    !> the way of the square root and the division (1.7x slower at n = 1000).
+    pure subroutine scaled_columns(d, n, c, q, x, y)
+        integer, intent(in) :: d, n
+        real(wp), intent(in) :: c, q(d, n), x(d, n)
+        real(wp), intent(out) :: y(d, n)
+        real(wp) :: s(FIELD_BLOCK)
+        integer :: i, j, j0, m
+        do j0 = 0, n - 1, FIELD_BLOCK
+            m = min(FIELD_BLOCK, n - j0)
+            select case (d)
+            case (2)
+                do j = 1, m
+                    s(j) = q(1, j0 + j)**2 + q(2, j0 + j)**2
+                end do
+            case (3)
+                do j = 1, m
+                    s(j) = q(1, j0 + j)**2 + q(2, j0 + j)**2 + q(3, j0 + j)**2
+                end do
+            case default
+                do j = 1, m
+                    s(j) = sum(q(:, j0 + j)**2)
+                end do
+            end select
+            do j = 1, m
+                s(j) = c / (s(j) * sqrt(s(j)))
+            end do
+            select case (d)
+            case (2)
+                do j = 1, m
+                    y(1, j0 + j) = s(j) * x(1, j0 + j)
+                    y(2, j0 + j) = s(j) * x(2, j0 + j)
+                end do
+            case (3)
+                do j = 1, m
+                    y(1, j0 + j) = s(j) * x(1, j0 + j)
+                    y(2, j0 + j) = s(j) * x(2, j0 + j)
+                    y(3, j0 + j) = s(j) * x(3, j0 + j)
+                end do
+            case default
+                do j = 1, m
+                    do i = 1, d
+                        y(i, j0 + j) = s(j) * x(i, j0 + j)
+                    end do
+                end do
+            end select
+        end do
+    end subroutine scaled_columns
 
     !> The Kepler model provides the gradient term.
     logical function kepler_model_has_gradient(self)

@@ -62,9 +62,14 @@ module fsym_kernel
     integer, parameter, public :: KR_XSHIFT = 2   !! u h^2 of the cached extrapolated force
     integer, parameter, public :: KERNEL_NRW = 2  !! length of `rw`
 
+    ! Kepler path: bodies per block of the block path, and up to how many planar bodies run
+    ! one after the other on scalars (the least overhead per step)
+    integer, parameter :: KEPLER_BLOCK = 64
+    integer, parameter :: KEPLER_SCALAR_MAX = 4
+
     public :: fsym_kernel_layout, fsym_kernel_slot, fsym_kernel_begin, fsym_kernel_resume
     public :: fsym_kernel_abort, fsym_kernel_invalidate, fsym_all_finite
-    public :: fsym_kernel_step_kepler
+    public :: fsym_kernel_run_kepler
 
 contains
 
@@ -323,19 +328,23 @@ contains
 
     end subroutine fsym_kernel_resume
 
-    !> A whole step for the Kepler force of the library (`kepler_field`, n bodies about a
-    !> fixed centre of parameter mu), without reverse communication: the same stages, the
-    !> same stage arithmetic (the `stage_*` routines `fsym_kernel_resume` uses), the same
-    !> force-reuse rules, checks and counters, so the state is bitwise the state of
-    !> `fsym_kernel_begin` + `fsym_kernel_resume` driven with that force. The bodies are
-    !> independent, so all stages run on one block of `KEPLER_BLOCK` bodies after the other
-    !> (the block stays in cache); up to `KEPLER_SCALAR_MAX` planar bodies run one after the
-    !> other on scalars (`kepler_bodies_2d`, the same operations element by element). Not for
-    !> compensated runs (stat = FSYM_ERR_BAD_REQUEST: use the general path). On failure q and
-    !> v are restored and iw(KW_PC) names the stage that failed (0: rejected on entry; with
-    !> several failing bodies it may be a later stage than the general path names).
-    subroutine fsym_kernel_step_kepler(nop, op, c, u, d, n, q, v, h, mu, w, nslot, iw, rw, &
-                                       nf, ng, stat)
+    !> `nsteps` steps for the Kepler force of the library (`kepler_field`: n bodies about a
+    !> fixed centre of parameter mu) without reverse communication and without a return to
+    !> the caller between steps. Each step has the stages, the stage arithmetic (`axpy`,
+    !> `axpy2`, the operations `fsym_kernel_resume` applies), the force-reuse rules, checks
+    !> and counters of `fsym_kernel_begin` + `fsym_kernel_resume` driven with that force, so
+    !> the state after k steps is bitwise the state after k such steps. Up to
+    !> `KEPLER_SCALAR_MAX` planar bodies run one after the other, each on scalars for all
+    !> its steps (`kepler_run_2d`); more bodies run stage by stage on blocks of
+    !> `KEPLER_BLOCK` (the loops vectorise and a block stays in cache).
+    !>
+    !> On return `ndone` steps are complete. On failure (`stat` /= 0) q and v are the state
+    !> after `ndone` steps (the failing step is undone), the cache is forgotten and
+    !> iw(KW_PC) names the stage that failed (0: rejected on entry; with several failing
+    !> bodies in the block path it may be a later stage than the general path names). Not
+    !> for compensated runs (stat = FSYM_ERR_BAD_REQUEST: use the general path).
+    subroutine fsym_kernel_run_kepler(nop, op, c, u, d, n, q, v, h, mu, nsteps, w, nslot, &
+                                      iw, rw, nf, ng, ndone, stat)
         integer, intent(in) :: nop                    !! number of stages
         integer, intent(in) :: op(nop)                !! op codes
         real(wp), intent(in) :: c(nop), u(nop)        !! stage coefficients
@@ -343,19 +352,17 @@ contains
         real(wp), intent(inout) :: q(d, n), v(d, n)   !! state
         real(wp), intent(in) :: h                     !! step
         real(wp), intent(in) :: mu                    !! G M of the centre
+        integer(ik), intent(in) :: nsteps             !! steps to take (none if < 1)
         real(wp), intent(inout) :: w(d, n, nslot)     !! work slots
         integer, intent(inout) :: iw(KERNEL_NIW)      !! kernel integer state
         real(wp), intent(inout) :: rw(KERNEL_NRW)     !! kernel real state
         integer(ik), intent(inout) :: nf, ng          !! evaluation counters
+        integer(ik), intent(out) :: ndone             !! steps completed
         integer, intent(out) :: stat                  !! FSYM_SUCCESS or an error code
-        integer, parameter :: KEPLER_BLOCK = 64
-        ! up to this many bodies (d = 2) one body after the other on scalars (the least
-        ! overhead per step); more bodies run stage by stage on blocks (the loops vectorise)
-        integer, parameter :: KEPLER_SCALAR_MAX = 4
-        integer :: k, m, ia, ig, iqe, iae, j0, j1, mb, have0(3)
-        integer(ik) :: nf0, ng0
-        real(wp) :: shift, xshift0
 
+        ndone = 0
+        stat = FSYM_SUCCESS
+        if (nsteps < 1) return
         if (iw(KW_COMP) /= 0) then
             stat = FSYM_ERR_BAD_REQUEST; return
         end if
@@ -367,80 +374,108 @@ contains
         if (stat /= FSYM_SUCCESS) then
             iw(KW_PC) = 0; return      ! rejected before the first stage
         end if
+        if (d == 2 .and. n <= KEPLER_SCALAR_MAX) then
+            call kepler_run_2d(nop, op, c, u, n, q, v, h, mu, nsteps, w, nslot, iw, rw, nf, ng, &
+                               ndone, stat)
+        else
+            call kepler_run_blocks(nop, op, c, u, d, n, q, v, h, mu, nsteps, w, nslot, iw, rw, &
+                                   nf, ng, ndone, stat)
+        end if
+    end subroutine fsym_kernel_run_kepler
+
+    !> The block path of `fsym_kernel_run_kepler` (entered after `fsym_kernel_begin`): every
+    !> step saves its starting state (for the restore), runs all stages on one block of
+    !> bodies after the other, then checks the state.
+    subroutine kepler_run_blocks(nop, op, c, u, d, n, q, v, h, mu, nsteps, w, nslot, iw, rw, &
+                                 nf, ng, ndone, stat)
+        integer, intent(in) :: nop, op(nop), d, n, nslot
+        real(wp), intent(in) :: c(nop), u(nop), h, mu
+        integer(ik), intent(in) :: nsteps
+        real(wp), intent(inout) :: q(d, n), v(d, n), w(d, n, nslot)
+        integer, intent(inout) :: iw(KERNEL_NIW)
+        real(wp), intent(inout) :: rw(KERNEL_NRW)
+        integer(ik), intent(inout) :: nf, ng
+        integer(ik), intent(out) :: ndone
+        integer, intent(out) :: stat
+        integer :: k, m, ia, ig, iqe, iae, j0, j1, mb, have0(3)
+        integer(ik) :: istep, nf0, ng0
+        real(wp) :: shift, xshift0
+
+        stat = FSYM_SUCCESS
+        ndone = 0
         m = d * n
         ia = iw(KW_MAP - 1 + SLOT_A); ig = iw(KW_MAP - 1 + SLOT_G)
         iqe = iw(KW_MAP - 1 + SLOT_QE); iae = iw(KW_MAP - 1 + SLOT_AE)
-        if (d == 2 .and. n <= KEPLER_SCALAR_MAX) then
-            call kepler_bodies_2d(nop, op, c, u, n, q, v, h, mu, w, nslot, ia, ig, iqe, iae, &
-                                  iw, rw, nf, ng, stat)
-            if (stat /= FSYM_SUCCESS) then
-                k = iw(KW_PC)
-                call fsym_kernel_abort(d, n, q, v, w, nslot, iw)
-                iw(KW_PC) = k
+        do istep = 1, nsteps
+            if (istep > 1) then       ! the first step's start was saved by the begin
+                w(:, :, iw(KW_MAP - 1 + SLOT_Q0)) = q
+                w(:, :, iw(KW_MAP - 1 + SLOT_V0)) = v
+                iw(KW_ACTIVE) = 1
             end if
-            return
-        end if
-        ! every block starts from the same cache state and counts from the same counters
-        have0 = iw(KW_HAVE_A:KW_HAVE_X); xshift0 = rw(KR_XSHIFT)
-        nf0 = nf; ng0 = ng
-        do j0 = 1, n, KEPLER_BLOCK
-            j1 = min(n, j0 + KEPLER_BLOCK - 1)
-            mb = d * (j1 - j0 + 1)
-            iw(KW_HAVE_A:KW_HAVE_X) = have0; rw(KR_XSHIFT) = xshift0
-            nf = nf0; ng = ng0
-            do k = 1, nop
-                iw(KW_PC) = k
-                select case (op(k))
-                case (OP_DRIFT)
-                    call stage_drift(mb, q(:, j0:j1), v(:, j0:j1), c(k) * h)
-                    iw(KW_HAVE_A) = 0; iw(KW_HAVE_G) = 0; iw(KW_HAVE_X) = 0
-                case (OP_KICK)
-                    if (iw(KW_HAVE_A) == 0) then
-                        call get_force()
-                        if (stat /= FSYM_SUCCESS) return
-                    end if
-                    call stage_kick(mb, v(:, j0:j1), w(:, j0:j1, ia), c(k) * h)
-                case (OP_GRAD_KICK)
-                    if (iw(KW_HAVE_A) == 0) then
-                        call get_force()
-                        if (stat /= FSYM_SUCCESS) return
-                    end if
-                    if (iw(KW_HAVE_G) == 0) then
-                        call kepler_field_gradient(d, j1 - j0 + 1, mu, q(:, j0:j1), &
-                                                   w(:, j0:j1, ia), w(:, j0:j1, ig))
-                        if (.not. fsym_all_finite(mb, w(:, j0:j1, ig))) then
-                            call fail(FSYM_ERR_NONFINITE_FORCE); return
+            ! every block starts from the same cache state and counts from the same counters
+            have0 = iw(KW_HAVE_A:KW_HAVE_X); xshift0 = rw(KR_XSHIFT)
+            nf0 = nf; ng0 = ng
+            do j0 = 1, n, KEPLER_BLOCK
+                j1 = min(n, j0 + KEPLER_BLOCK - 1)
+                mb = d * (j1 - j0 + 1)
+                iw(KW_HAVE_A:KW_HAVE_X) = have0; rw(KR_XSHIFT) = xshift0
+                nf = nf0; ng = ng0
+                do k = 1, nop
+                    iw(KW_PC) = k
+                    select case (op(k))
+                    case (OP_DRIFT)
+                        call stage_drift(mb, q(:, j0:j1), v(:, j0:j1), c(k) * h)
+                        iw(KW_HAVE_A) = 0; iw(KW_HAVE_G) = 0; iw(KW_HAVE_X) = 0
+                    case (OP_KICK)
+                        if (iw(KW_HAVE_A) == 0) then
+                            call get_force()
+                            if (stat /= FSYM_SUCCESS) return
                         end if
-                        iw(KW_HAVE_G) = 1; ng = ng + 1
-                    end if
-                    call stage_grad_kick(mb, v(:, j0:j1), w(:, j0:j1, ia), w(:, j0:j1, ig), &
-                                         c(k) * h, u(k) * h**3)
-                case (OP_EXTRAP_KICK)
-                    if (iw(KW_HAVE_A) == 0) then
-                        call get_force()
-                        if (stat /= FSYM_SUCCESS) return
-                    end if
-                    shift = u(k) * h * h
-                    if (iw(KW_HAVE_X) == 0 .or. rw(KR_XSHIFT) /= shift) then
-                        call stage_shift(mb, w(:, j0:j1, iqe), q(:, j0:j1), w(:, j0:j1, ia), &
-                                         shift)
-                        rw(KR_XSHIFT) = shift
-                        call kepler_field(d, j1 - j0 + 1, mu, w(:, j0:j1, iqe), w(:, j0:j1, iae))
-                        if (.not. fsym_all_finite(mb, w(:, j0:j1, iae))) then
-                            call fail(FSYM_ERR_NONFINITE_FORCE); return
+                        call stage_kick(mb, v(:, j0:j1), w(:, j0:j1, ia), c(k) * h)
+                    case (OP_GRAD_KICK)
+                        if (iw(KW_HAVE_A) == 0) then
+                            call get_force()
+                            if (stat /= FSYM_SUCCESS) return
                         end if
-                        iw(KW_HAVE_X) = 1; nf = nf + 1
-                    end if
-                    call stage_kick(mb, v(:, j0:j1), w(:, j0:j1, iae), c(k) * h)
-                case default
-                    ! nothing else can occur here
-                end select
+                        if (iw(KW_HAVE_G) == 0) then
+                            call kepler_field_gradient(d, j1 - j0 + 1, mu, q(:, j0:j1), &
+                                                       w(:, j0:j1, ia), w(:, j0:j1, ig))
+                            if (.not. fsym_all_finite(mb, w(:, j0:j1, ig))) then
+                                call fail(FSYM_ERR_NONFINITE_FORCE); return
+                            end if
+                            iw(KW_HAVE_G) = 1; ng = ng + 1
+                        end if
+                        call stage_grad_kick(mb, v(:, j0:j1), w(:, j0:j1, ia), &
+                                             w(:, j0:j1, ig), c(k) * h, u(k) * h**3)
+                    case (OP_EXTRAP_KICK)
+                        if (iw(KW_HAVE_A) == 0) then
+                            call get_force()
+                            if (stat /= FSYM_SUCCESS) return
+                        end if
+                        shift = u(k) * h * h
+                        if (iw(KW_HAVE_X) == 0 .or. rw(KR_XSHIFT) /= shift) then
+                            call stage_shift(mb, w(:, j0:j1, iqe), q(:, j0:j1), &
+                                             w(:, j0:j1, ia), shift)
+                            rw(KR_XSHIFT) = shift
+                            call kepler_field(d, j1 - j0 + 1, mu, w(:, j0:j1, iqe), &
+                                              w(:, j0:j1, iae))
+                            if (.not. fsym_all_finite(mb, w(:, j0:j1, iae))) then
+                                call fail(FSYM_ERR_NONFINITE_FORCE); return
+                            end if
+                            iw(KW_HAVE_X) = 1; nf = nf + 1
+                        end if
+                        call stage_kick(mb, v(:, j0:j1), w(:, j0:j1, iae), c(k) * h)
+                    case default
+                        ! nothing else can occur here
+                    end select
+                end do
             end do
+            iw(KW_PC) = nop + 1
+            if (.not. (fsym_all_finite(m, q) .and. fsym_all_finite(m, v))) then
+                call fail(FSYM_ERR_NONFINITE_STATE); return
+            end if
+            ndone = istep
         end do
-        iw(KW_PC) = nop + 1
-        if (.not. (fsym_all_finite(m, q) .and. fsym_all_finite(m, v))) then
-            call fail(FSYM_ERR_NONFINITE_STATE); return
-        end if
         if (iw(KW_HAVE_A) /= 0) w(:, :, iw(KW_MAP - 1 + SLOT_QLAST)) = q
         iw(KW_ACTIVE) = 0
         iw(KW_REQ) = REQ_DONE
@@ -456,13 +491,17 @@ contains
             iw(KW_HAVE_A) = 1; nf = nf + 1
         end subroutine get_force
 
+        !> Undo the step in progress (back to its saved start) and report `code`.
         subroutine fail(code)
             integer, intent(in) :: code
+            integer :: pc
+            pc = iw(KW_PC)
             call fsym_kernel_abort(d, n, q, v, w, nslot, iw)
+            iw(KW_PC) = pc
             stat = code
         end subroutine fail
 
-    end subroutine fsym_kernel_step_kepler
+    end subroutine kepler_run_blocks
 
     !> `fsym_kernel_begin` for d = 2 without compensation, in one pass over the bodies on
     !> scalars: the same checks in the same order, the same saved state and cache rule.
@@ -499,137 +538,211 @@ contains
         stat = FSYM_SUCCESS
     end subroutine begin_2d
 
-    !> d = 2: one body after the other, its state and forces in scalars, with the
-    !> operations of `stage_*`, `kepler_field` and `kepler_field_gradient` element by
-    !> element (so bitwise the same). Every force computed is also stored in its slot, as
-    !> the general path leaves it; q(:, j), v(:, j) are written once body j succeeded.
-    subroutine kepler_bodies_2d(nop, op, c, u, n, q, v, h, mu, w, nslot, ia, ig, iqe, iae, &
-                                iw, rw, nf, ng, stat)
-        integer, intent(in) :: nop, op(nop), n, nslot, ia, ig, iqe, iae
+    !> The planar scalar path of `fsym_kernel_run_kepler` (entered after `begin_2d`, which
+    !> saved the entry state in SLOT_Q0/SLOT_V0). Each body runs all its steps on scalars
+    !> (state, forces and cache flags in registers), with the operations of `axpy`, `axpy2`
+    !> and `kepler_field`/`kepler_field_gradient` element by element, so bitwise the same.
+    !> The bodies are independent, so running them one after the other gives the state of
+    !> running them step by step. When a body fails at step kf (the earliest over the
+    !> bodies; at equal steps the lowest body, as a step-by-step run finds it first), every
+    !> body is brought to the end of step kf - 1: a single body is already there (its
+    !> failing step undone on scalars); several bodies run again from the saved entry state.
+    subroutine kepler_run_2d(nop, op, c, u, n, q, v, h, mu, nsteps, w, nslot, iw, rw, nf, ng, &
+                             ndone, stat)
+        integer, intent(in) :: nop, op(nop), n, nslot
         real(wp), intent(in) :: c(nop), u(nop), h, mu
+        integer(ik), intent(in) :: nsteps
         real(wp), intent(inout) :: q(2, n), v(2, n), w(2, n, nslot)
         integer, intent(inout) :: iw(KERNEL_NIW)
         real(wp), intent(inout) :: rw(KERNEL_NRW)
         integer(ik), intent(inout) :: nf, ng
+        integer(ik), intent(out) :: ndone
         integer, intent(out) :: stat
-        integer :: j, k, hva, hvg, hvx, hva0, hvg0, hvx0
-        integer(ik) :: nf0, ng0
-        real(wp) :: q1, q2, v1, v2, a1, a2, g1, g2, x1, x2, e1, e2, r2, s, r, xs, xs0, shift
-        real(wp) :: t3        ! r2 sqrt(r2) at the current q, when ht (shared by a and g)
-        logical :: ht
-        stat = FSYM_SUCCESS
-        nf0 = nf; ng0 = ng
+        ! per body, after its run: a, g, e (force at the shifted point), x (shifted point)
+        real(wp) :: fin(8, KEPLER_SCALAR_MAX)
+        integer :: j, ia, ig, iqe, iae, hva0, hvg0, hvx0, hva, hvg, hvx, stage, code
+        integer :: fstage, fcode
+        integer(ik) :: kf, ifail, nfb, ngb, pf, pg, fpf, fpg
+        real(wp) :: xs0, xs
+
+        ia = iw(KW_MAP - 1 + SLOT_A); ig = iw(KW_MAP - 1 + SLOT_G)
+        iqe = iw(KW_MAP - 1 + SLOT_QE); iae = iw(KW_MAP - 1 + SLOT_AE)
         hva0 = iw(KW_HAVE_A); hvg0 = iw(KW_HAVE_G); hvx0 = iw(KW_HAVE_X)
         xs0 = rw(KR_XSHIFT)
-        hva = hva0; hvg = hvg0; hvx = hvx0; xs = xs0
+        stat = FSYM_SUCCESS
+        kf = nsteps + 1
+        fstage = 0; fcode = FSYM_SUCCESS; fpf = 0; fpg = 0
+        nfb = nf; ngb = ng
         do j = 1, n
-            hva = hva0; hvg = hvg0; hvx = hvx0; xs = xs0
-            nf = nf0; ng = ng0
-            q1 = q(1, j); q2 = q(2, j); v1 = v(1, j); v2 = v(2, j)
-            ht = .false.; t3 = 0.0_wp
-            a1 = w(1, j, ia); a2 = w(2, j, ia)
-            if (hvg /= 0) then
-                g1 = w(1, j, ig); g2 = w(2, j, ig)
-            else
-                g1 = 0.0_wp; g2 = 0.0_wp
+            call body(j, min(nsteps, kf))
+            if (ifail > 0 .and. ifail < kf) then
+                kf = ifail; fstage = stage; fcode = code; fpf = pf; fpg = pg
             end if
-            if (hvx /= 0) then
-                e1 = w(1, j, iae); e2 = w(2, j, iae)
-            else
-                e1 = 0.0_wp; e2 = 0.0_wp
-            end if
-            do k = 1, nop
-                if (op(k) /= OP_DRIFT .and. hva == 0) then
-                    ! every kind of kick needs a(q) first
-                    r2 = q1**2 + q2**2
-                    t3 = r2 * sqrt(r2); ht = .true.
-                    s = -mu / t3
-                    a1 = s * q1
-                    a2 = s * q2
-                    w(1, j, ia) = a1; w(2, j, ia) = a2
-                    if (.not. (ieee_is_finite(a1) .and. ieee_is_finite(a2))) then
-                        iw(KW_PC) = k; stat = FSYM_ERR_NONFINITE_FORCE; return
-                    end if
-                    hva = 1; nf = nf + 1
-                end if
-                select case (op(k))
-                case (OP_DRIFT)
-                    s = c(k) * h
-                    q1 = q1 + s * v1
-                    q2 = q2 + s * v2
-                    hva = 0; hvg = 0; hvx = 0; ht = .false.
-                case (OP_KICK)
-                    s = c(k) * h
-                    v1 = v1 + s * a1
-                    v2 = v2 + s * a2
-                case (OP_GRAD_KICK)
-                    if (hvg == 0) then
-                        if (.not. ht) then
-                            r2 = q1**2 + q2**2
-                            t3 = r2 * sqrt(r2)
-                        end if
-                        s = 4.0_wp * mu / t3
-                        g1 = s * a1
-                        g2 = s * a2
-                        w(1, j, ig) = g1; w(2, j, ig) = g2
-                        if (.not. (ieee_is_finite(g1) .and. ieee_is_finite(g2))) then
-                            iw(KW_PC) = k; stat = FSYM_ERR_NONFINITE_FORCE; return
-                        end if
-                        hvg = 1; ng = ng + 1
-                    end if
-                    s = c(k) * h
-                    r = u(k) * h**3
-                    v1 = v1 + (s * a1 + r * g1)
-                    v2 = v2 + (s * a2 + r * g2)
-                case (OP_EXTRAP_KICK)
-                    shift = u(k) * h * h
-                    if (hvx == 0 .or. xs /= shift) then
-                        x1 = q1 + shift * a1
-                        x2 = q2 + shift * a2
-                        w(1, j, iqe) = x1; w(2, j, iqe) = x2
-                        xs = shift
-                        r2 = x1**2 + x2**2
-                        s = -mu / (r2 * sqrt(r2))
-                        e1 = s * x1
-                        e2 = s * x2
-                        w(1, j, iae) = e1; w(2, j, iae) = e2
-                        if (.not. (ieee_is_finite(e1) .and. ieee_is_finite(e2))) then
-                            iw(KW_PC) = k; stat = FSYM_ERR_NONFINITE_FORCE; return
-                        end if
-                        hvx = 1; nf = nf + 1
-                    end if
-                    s = c(k) * h
-                    v1 = v1 + s * e1
-                    v2 = v2 + s * e2
-                case default
-                    continue      ! a validated scheme has no other op codes
-                end select
-            end do
-            if (.not. (ieee_is_finite(q1) .and. ieee_is_finite(q2) .and. &
-                       ieee_is_finite(v1) .and. ieee_is_finite(v2))) then
-                iw(KW_PC) = nop + 1; stat = FSYM_ERR_NONFINITE_STATE; return
-            end if
-            q(1, j) = q1; q(2, j) = q2; v(1, j) = v1; v(2, j) = v2
         end do
-        iw(KW_HAVE_A) = hva; iw(KW_HAVE_G) = hvg; iw(KW_HAVE_X) = hvx
-        rw(KR_XSHIFT) = xs
-        iw(KW_PC) = nop + 1
-        if (hva /= 0) w(:, :, iw(KW_MAP - 1 + SLOT_QLAST)) = q
+        if (kf > nsteps) then
+            ! every body ran every step: its cache (the same flags for all) stays valid
+            do j = 1, n
+                w(:, j, ia) = fin(1:2, j)
+                if (hvg /= 0) w(:, j, ig) = fin(3:4, j)
+                if (hvx /= 0) then
+                    w(:, j, iae) = fin(5:6, j); w(:, j, iqe) = fin(7:8, j)
+                end if
+            end do
+            iw(KW_HAVE_A) = hva; iw(KW_HAVE_G) = hvg; iw(KW_HAVE_X) = hvx
+            rw(KR_XSHIFT) = xs
+            nf = nfb; ng = ngb
+            if (hva /= 0) w(:, :, iw(KW_MAP - 1 + SLOT_QLAST)) = q
+            ndone = nsteps
+        else
+            if (n > 1) then
+                q = w(:, :, iw(KW_MAP - 1 + SLOT_Q0))
+                v = w(:, :, iw(KW_MAP - 1 + SLOT_V0))
+                do j = 1, n
+                    call body(j, kf - 1)      ! cannot fail: no body failed before step kf
+                end do
+            end if
+            ! counters as a step-by-step run leaves them: through step kf - 1, plus what the
+            ! failing step had evaluated when it failed
+            nf = nfb + fpf; ng = ngb + fpg
+            call fsym_kernel_invalidate(iw)
+            iw(KW_PC) = fstage
+            stat = fcode
+            ndone = kf - 1
+        end if
         iw(KW_ACTIVE) = 0
         iw(KW_REQ) = REQ_DONE
 
-    end subroutine kepler_bodies_2d
+    contains
+
+        !> Body j from its state in q, v and the entry cache, for up to `nst` steps. Leaves
+        !> the new state in q(:, j), v(:, j), its forces in fin(:, j), flags in hva, hvg,
+        !> hvx, xs, counters in nfb, ngb; on failure at step `ifail` (stage `stage`, error
+        !> `code`) the state and counters of the start of that step, and in `pf`, `pg` the
+        !> evaluations the failing step had made.
+        subroutine body(j, nst)
+            integer, intent(in) :: j
+            integer(ik), intent(in) :: nst
+            integer(ik) :: i, nfs, ngs
+            integer :: k
+            real(wp) :: q1, q2, v1, v2, a1, a2, g1, g2, x1, x2, e1, e2, r2, s, r, t3, shift
+            real(wp) :: q1s, q2s, v1s, v2s
+            logical :: ht        ! t3 = r2 sqrt(r2) holds for the current q
+            ifail = 0; stage = 0; code = FSYM_SUCCESS; pf = 0; pg = 0
+            hva = hva0; hvg = hvg0; hvx = hvx0; xs = xs0
+            nfb = nf; ngb = ng
+            q1 = q(1, j); q2 = q(2, j); v1 = v(1, j); v2 = v(2, j)
+            a1 = w(1, j, ia); a2 = w(2, j, ia)
+            g1 = 0.0_wp; g2 = 0.0_wp; e1 = 0.0_wp; e2 = 0.0_wp; x1 = 0.0_wp; x2 = 0.0_wp
+            if (hvg /= 0) then
+                g1 = w(1, j, ig); g2 = w(2, j, ig)
+            end if
+            if (hvx /= 0) then
+                e1 = w(1, j, iae); e2 = w(2, j, iae); x1 = w(1, j, iqe); x2 = w(2, j, iqe)
+            end if
+            ht = .false.; t3 = 0.0_wp
+            steps: do i = 1, nst
+                q1s = q1; q2s = q2; v1s = v1; v2s = v2; nfs = nfb; ngs = ngb
+                do k = 1, nop
+                    if (op(k) /= OP_DRIFT .and. hva == 0) then
+                        ! every kind of kick needs a(q) first
+                        r2 = q1**2 + q2**2
+                        t3 = r2 * sqrt(r2); ht = .true.
+                        s = -mu / t3
+                        a1 = s * q1
+                        a2 = s * q2
+                        if (.not. (ieee_is_finite(a1) .and. ieee_is_finite(a2))) then
+                            code = FSYM_ERR_NONFINITE_FORCE; exit steps
+                        end if
+                        hva = 1; nfb = nfb + 1
+                    end if
+                    select case (op(k))
+                    case (OP_DRIFT)
+                        s = c(k) * h
+                        q1 = axpy(q1, s, v1)
+                        q2 = axpy(q2, s, v2)
+                        hva = 0; hvg = 0; hvx = 0; ht = .false.
+                    case (OP_KICK)
+                        s = c(k) * h
+                        v1 = axpy(v1, s, a1)
+                        v2 = axpy(v2, s, a2)
+                    case (OP_GRAD_KICK)
+                        if (hvg == 0) then
+                            if (.not. ht) then
+                                r2 = q1**2 + q2**2
+                                t3 = r2 * sqrt(r2)
+                            end if
+                            s = 4.0_wp * mu / t3
+                            g1 = s * a1
+                            g2 = s * a2
+                            if (.not. (ieee_is_finite(g1) .and. ieee_is_finite(g2))) then
+                                code = FSYM_ERR_NONFINITE_FORCE; exit steps
+                            end if
+                            hvg = 1; ngb = ngb + 1
+                        end if
+                        s = c(k) * h
+                        r = u(k) * h**3
+                        v1 = axpy2(v1, s, a1, r, g1)
+                        v2 = axpy2(v2, s, a2, r, g2)
+                    case (OP_EXTRAP_KICK)
+                        shift = u(k) * h * h
+                        if (hvx == 0 .or. xs /= shift) then
+                            x1 = axpy(q1, shift, a1)
+                            x2 = axpy(q2, shift, a2)
+                            xs = shift
+                            r2 = x1**2 + x2**2
+                            s = -mu / (r2 * sqrt(r2))
+                            e1 = s * x1
+                            e2 = s * x2
+                            if (.not. (ieee_is_finite(e1) .and. ieee_is_finite(e2))) then
+                                code = FSYM_ERR_NONFINITE_FORCE; exit steps
+                            end if
+                            hvx = 1; nfb = nfb + 1
+                        end if
+                        s = c(k) * h
+                        v1 = axpy(v1, s, e1)
+                        v2 = axpy(v2, s, e2)
+                    case default
+                        continue      ! a validated scheme has no other op codes
+                    end select
+                end do
+                if (.not. (ieee_is_finite(q1) .and. ieee_is_finite(q2) .and. &
+                           ieee_is_finite(v1) .and. ieee_is_finite(v2))) then
+                    k = nop + 1; code = FSYM_ERR_NONFINITE_STATE; exit steps
+                end if
+            end do steps
+            if (code /= FSYM_SUCCESS) then
+                ifail = i; stage = k; pf = nfb - nfs; pg = ngb - ngs
+                q1 = q1s; q2 = q2s; v1 = v1s; v2 = v2s
+                nfb = nfs; ngb = ngs
+            end if
+            q(1, j) = q1; q(2, j) = q2; v(1, j) = v1; v(2, j) = v2
+            fin(:, j) = [a1, a2, g1, g2, e1, e2, x1, x2]
+        end subroutine body
+
+    end subroutine kepler_run_2d
 
     ! ---------------------------------------------------------------- stage arithmetic
-    ! The general path updates the state through these routines; the d = 2 Kepler path
-    ! (kepler_bodies_2d) repeats their operations element by element on scalars.
+    ! Every update of the state is `axpy` or `axpy2`: the array stages below apply them
+    ! element-wise, the planar Kepler path (kepler_run_2d) to scalars.
+
+    !> The update of every drift, kick and shift: x + s y.
+    elemental real(wp) function axpy(x, s, y)
+        real(wp), intent(in) :: x, s, y
+        axpy = x + s * y
+    end function axpy
+
+    !> The update of a gradient kick: x + (s y + r z).
+    elemental real(wp) function axpy2(x, s, y, r, z)
+        real(wp), intent(in) :: x, s, y, r, z
+        axpy2 = x + (s * y + r * z)
+    end function axpy2
 
     !> Drift q <- q + s v (s = c h).
     pure subroutine stage_drift(m, q, v, s)
         integer, intent(in) :: m
         real(wp), intent(inout) :: q(m)
         real(wp), intent(in) :: v(m), s
-        q = q + s * v
+        q = axpy(q, s, v)
     end subroutine stage_drift
 
     !> Kick v <- v + s a (s = c h).
@@ -637,7 +750,7 @@ contains
         integer, intent(in) :: m
         real(wp), intent(inout) :: v(m)
         real(wp), intent(in) :: a(m), s
-        v = v + s * a
+        v = axpy(v, s, a)
     end subroutine stage_kick
 
     !> Gradient kick v <- v + (s a + r g) (s = c h, r = u h^3).
@@ -645,7 +758,7 @@ contains
         integer, intent(in) :: m
         real(wp), intent(inout) :: v(m)
         real(wp), intent(in) :: a(m), g(m), s, r
-        v = v + (s * a + r * g)
+        v = axpy2(v, s, a, r, g)
     end subroutine stage_grad_kick
 
     !> Extrapolated point x <- q + s a (s = u h^2).
@@ -653,7 +766,7 @@ contains
         integer, intent(in) :: m
         real(wp), intent(out) :: x(m)
         real(wp), intent(in) :: q(m), a(m), s
-        x = q + s * a
+        x = axpy(q, s, a)
     end subroutine stage_shift
 
     !> x <- x + s*y with Kahan compensation carried in e.

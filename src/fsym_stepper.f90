@@ -8,6 +8,8 @@ module fsym_stepper
     implicit none
     private
 
+    public :: stepper_run
+
     !> A time stepper for q' = v, v' = a(q) on arrays q(d,n), v(d,n).
     type, abstract, public :: stepper_t
         private
@@ -63,7 +65,9 @@ module fsym_stepper
 contains
 
     !> Take `nsteps` steps of size h; stops at the first failing step, leaving the state of the
-    !> last good step (check `stat`; `steps()` tells how far it got).
+    !> last good step (check `stat`; `steps()` tells how far it got). The default `run`: one
+    !> `step` after the other (public so that an extension overriding `run` can fall back
+    !> to it).
     subroutine stepper_run(self, model, q, v, h, nsteps, stat, errmsg, recorder)
         class(stepper_t), intent(inout) :: self               !! the stepper
         class(force_model_t), intent(inout) :: model          !! force model
@@ -181,17 +185,22 @@ contains
         self%t_base = t0; self%k_since = 0; self%h_now = 0.0_wp
     end subroutine describe_stepper
 
-    !> For extensions: one step of size h completed.
-    pure subroutine count_step(self, h)
-        class(stepper_t), intent(inout) :: self  !! the stepper
-        real(wp), intent(in) :: h                !! its size
+    !> For extensions: one step (or `nsteps` steps) of size h completed.
+    pure subroutine count_step(self, h, nsteps)
+        class(stepper_t), intent(inout) :: self        !! the stepper
+        real(wp), intent(in) :: h                      !! their size
+        integer(ik), intent(in), optional :: nsteps    !! steps completed (default 1)
+        integer(ik) :: k
+        k = 1
+        if (present(nsteps)) k = nsteps
+        if (k < 1) return
         if (h /= self%h_now) then
             self%t_base = self%time()
             self%k_since = 0
             self%h_now = h
         end if
-        self%k_since = self%k_since + 1
-        self%nsteps = self%nsteps + 1
+        self%k_since = self%k_since + k
+        self%nsteps = self%nsteps + k
     end subroutine count_step
 
     !> For extensions: the evaluation counters, to be updated in place by the kernel.

@@ -18,7 +18,9 @@ contains
         type(test_t), allocatable :: tests(:)
         tests = [ &
             new_test('fastpath: Kepler path bitwise equal to the general path', t_bitwise), &
-            new_test('fastpath: same failure and restored state as the general path', t_failure)]
+            new_test('fastpath: same failure and restored state as the general path', t_failure), &
+            new_test('fastpath: run(k) bitwise equal to k general steps', t_run_bitwise), &
+            new_test('fastpath: run stops where the steps stop, same message', t_run_failure)]
     end function collect_fastpath
 
     subroutine t_bitwise(err)
@@ -130,5 +132,96 @@ contains
         call check(err, all(q1 == q0) .and. all(v1 == v0) .and. all(q2 == q0) .and. &
                    all(v2 == v0), 'many bodies: state not restored')
     end subroutine many_bodies
+
+    !> `run` with `kepler_model_t` (all steps in one kernel call) against the same number
+    !> of general-path steps: planar single and few bodies (scalar path), many (block path),
+    !> spatial; in pieces with a change of step between them.
+    subroutine t_run_bitwise(err)
+        character(len=:), allocatable, intent(out) :: err
+        character(len=8), parameter :: names(8) = [character(len=8) :: 'T2', 'FR', 'A', &
+            'A''', 'C', 'C''', 'A6', 'BM']
+        integer, parameter :: dims(4) = [2, 2, 2, 3], nbs(4) = [1, 3, 70, 5]
+        type(kepler_model_t) :: fast
+        type(wrapped_kepler_t) :: slow
+        type(integrator_t) :: i1, i2
+        real(wp), allocatable :: q1(:, :), v1(:, :), q2(:, :), v2(:, :)
+        real(wp) :: x(3), y(3)
+        integer :: i, m, k, j, st, d, nb
+        fast%mu = 0.9_wp; slow%mu = 0.9_wp
+        do i = 1, size(dims) * size(names)
+            d = dims(1 + (i - 1) / size(names)); nb = nbs(1 + (i - 1) / size(names))
+            m = 1 + mod(i - 1, size(names))
+            call i1%init_by_name(trim(names(m)), fast, d, nb, st)
+            call i2%init_by_name(trim(names(m)), slow, d, nb, st)
+            if (allocated(q1)) deallocate (q1, v1)
+            allocate (q1(d, nb), v1(d, nb))
+            do j = 1, nb
+                x = [1.0_wp - 0.005_wp * j, 0.01_wp * j, 0.05_wp]
+                y = [0.02_wp, 1.1_wp + 0.002_wp * j, -0.03_wp]
+                q1(:, j) = x(1:d); v1(:, j) = y(1:d)
+            end do
+            q2 = q1; v2 = v1
+            call i1%run(fast, q1, v1, 0.01_wp, 120_ik, st)
+            call check(err, st == 0, trim(names(m))//': run failed')
+            call i1%run(fast, q1, v1, -0.015_wp, 80_ik, st)
+            do k = 1, 200
+                call i2%step(slow, q2, v2, merge(0.01_wp, -0.015_wp, k <= 120), st)
+            end do
+            call check(err, all(q1 == q2) .and. all(v1 == v2), trim(names(m))// &
+                       ': run and steps differ')
+            call check(err, i1%force_evaluations() == i2%force_evaluations() .and. &
+                       i1%gradient_evaluations() == i2%gradient_evaluations() .and. &
+                       i1%steps() == i2%steps() .and. i1%time() == i2%time(), &
+                       trim(names(m))//': counters or clock differ after run')
+        end do
+    end subroutine t_run_bitwise
+
+    !> Bodies flying off so fast that q overflows after some steps (the force stays finite:
+    !> |q|^2 overflows, a = -0): `run` stops at the same step, with the same state, counters
+    !> and message as general-path steps taken one by one until the first failure. Several
+    !> bodies failing at different steps: the earliest step counts, and at equal steps the
+    !> lowest body (its stage).
+    subroutine t_run_failure(err)
+        character(len=:), allocatable, intent(out) :: err
+        character(len=4), parameter :: names(3) = [character(len=4) :: 'FR', 'A', 'C''']
+        integer, parameter :: nbs(3) = [1, 3, 70]
+        type(kepler_model_t) :: fast
+        type(wrapped_kepler_t) :: slow
+        type(integrator_t) :: i1, i2
+        real(wp), allocatable :: q1(:, :), v1(:, :), q2(:, :), v2(:, :)
+        character(len=256) :: m1, m2
+        integer :: i, m, j, k, st1, st2, nb
+        do i = 1, size(nbs) * size(names)
+            nb = nbs(1 + (i - 1) / size(names)); m = 1 + mod(i - 1, size(names))
+            if (allocated(q1)) deallocate (q1, v1)
+            allocate (q1(2, nb), v1(2, nb))
+            do j = 1, nb
+                q1(:, j) = [1.0_wp, 0.5_wp]
+                v1(:, j) = [1.0e306_wp, 0.0_wp]        ! reaches huge() after ~18 steps
+            end do
+            if (nb > 1) then
+                v1(1, 2) = 2.0e306_wp                   ! fails first ...
+                v1(1, nb) = 2.0e306_wp                  ! ... at the same step
+            end if
+            q2 = q1; v2 = v1
+            call i1%init_by_name(trim(names(m)), fast, 2, nb)
+            call i2%init_by_name(trim(names(m)), slow, 2, nb)
+            m1 = ''; m2 = ''
+            call i1%run(fast, q1, v1, 10.0_wp, 1000_ik, st1, m1)
+            do k = 1, 1000
+                call i2%step(slow, q2, v2, 10.0_wp, st2, m2)
+                if (st2 /= 0) exit
+            end do
+            call check(err, st1 /= 0 .and. st1 == st2 .and. m1 == m2, trim(names(m))// &
+                       ': "'//trim(m1)//'" / "'//trim(m2)//'"')
+            call check(err, i1%steps() == i2%steps() .and. i1%steps() > 5, &
+                       trim(names(m))//': stopped at another step')
+            call check(err, all(q1 == q2) .and. all(v1 == v2), trim(names(m))// &
+                       ': states differ after the failure')
+            call check(err, i1%force_evaluations() == i2%force_evaluations() .and. &
+                       i1%gradient_evaluations() == i2%gradient_evaluations(), &
+                       trim(names(m))//': counters differ after the failure')
+        end do
+    end subroutine t_run_failure
 
 end module test_fastpath
