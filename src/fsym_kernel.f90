@@ -383,9 +383,11 @@ contains
         end if
     end subroutine fsym_kernel_run_kepler
 
-    !> The block path of `fsym_kernel_run_kepler` (entered after `fsym_kernel_begin`): every
-    !> step saves its starting state (for the restore), runs all stages on one block of
-    !> bodies after the other, then checks the state.
+    !> The block path of `fsym_kernel_run_kepler` (entered after `fsym_kernel_begin`, which
+    !> saved the entry state in SLOT_Q0/SLOT_V0): every step runs all stages on one block of
+    !> bodies after the other, and checks the block's new state. Steps save nothing: when step kf
+    !> fails, the state of its start is made again by running kf - 1 steps from the saved
+    !> entry state (bitwise the same steps).
     subroutine kepler_run_blocks(nop, op, c, u, d, n, q, v, h, mu, nsteps, w, nslot, iw, rw, &
                                  nf, ng, ndone, stat)
         integer, intent(in) :: nop, op(nop), d, n, nslot
@@ -397,109 +399,129 @@ contains
         integer(ik), intent(inout) :: nf, ng
         integer(ik), intent(out) :: ndone
         integer, intent(out) :: stat
-        integer :: k, m, ia, ig, iqe, iae, j0, j1, mb, have0(3)
-        integer(ik) :: istep, nf0, ng0
-        real(wp) :: shift, xshift0
+        integer :: ia, ig, iqe, iae, entry_have(3), fstage
+        integer :: j0, j1, mb, code      ! block in work, and the error found (in `advance`)
+        integer(ik) :: kf, nf_entry, ng_entry, pf, pg, pf0, pg0
+        real(wp) :: entry_xshift
 
-        stat = FSYM_SUCCESS
-        ndone = 0
-        m = d * n
         ia = iw(KW_MAP - 1 + SLOT_A); ig = iw(KW_MAP - 1 + SLOT_G)
         iqe = iw(KW_MAP - 1 + SLOT_QE); iae = iw(KW_MAP - 1 + SLOT_AE)
-        do istep = 1, nsteps
-            if (istep > 1) then       ! the first step's start was saved by the begin
-                w(:, :, iw(KW_MAP - 1 + SLOT_Q0)) = q
-                w(:, :, iw(KW_MAP - 1 + SLOT_V0)) = v
-                iw(KW_ACTIVE) = 1
-            end if
-            ! every block starts from the same cache state and counts from the same counters
-            have0 = iw(KW_HAVE_A:KW_HAVE_X); xshift0 = rw(KR_XSHIFT)
-            nf0 = nf; ng0 = ng
-            do j0 = 1, n, KEPLER_BLOCK
-                j1 = min(n, j0 + KEPLER_BLOCK - 1)
-                mb = d * (j1 - j0 + 1)
-                iw(KW_HAVE_A:KW_HAVE_X) = have0; rw(KR_XSHIFT) = xshift0
-                nf = nf0; ng = ng0
-                do k = 1, nop
-                    iw(KW_PC) = k
-                    select case (op(k))
-                    case (OP_DRIFT)
-                        call stage_drift(mb, q(:, j0:j1), v(:, j0:j1), c(k) * h)
-                        iw(KW_HAVE_A) = 0; iw(KW_HAVE_G) = 0; iw(KW_HAVE_X) = 0
-                    case (OP_KICK)
-                        if (iw(KW_HAVE_A) == 0) then
-                            call get_force()
-                            if (stat /= FSYM_SUCCESS) return
-                        end if
-                        call stage_kick(mb, v(:, j0:j1), w(:, j0:j1, ia), c(k) * h)
-                    case (OP_GRAD_KICK)
-                        if (iw(KW_HAVE_A) == 0) then
-                            call get_force()
-                            if (stat /= FSYM_SUCCESS) return
-                        end if
-                        if (iw(KW_HAVE_G) == 0) then
-                            call kepler_field_gradient(d, j1 - j0 + 1, mu, q(:, j0:j1), &
-                                                       w(:, j0:j1, ia), w(:, j0:j1, ig))
-                            if (.not. fsym_all_finite(mb, w(:, j0:j1, ig))) then
-                                call fail(FSYM_ERR_NONFINITE_FORCE); return
-                            end if
-                            iw(KW_HAVE_G) = 1; ng = ng + 1
-                        end if
-                        call stage_grad_kick(mb, v(:, j0:j1), w(:, j0:j1, ia), &
-                                             w(:, j0:j1, ig), c(k) * h, u(k) * h**3)
-                    case (OP_EXTRAP_KICK)
-                        if (iw(KW_HAVE_A) == 0) then
-                            call get_force()
-                            if (stat /= FSYM_SUCCESS) return
-                        end if
-                        shift = u(k) * h * h
-                        if (iw(KW_HAVE_X) == 0 .or. rw(KR_XSHIFT) /= shift) then
-                            call stage_shift(mb, w(:, j0:j1, iqe), q(:, j0:j1), &
-                                             w(:, j0:j1, ia), shift)
-                            rw(KR_XSHIFT) = shift
-                            call kepler_field(d, j1 - j0 + 1, mu, w(:, j0:j1, iqe), &
-                                              w(:, j0:j1, iae))
-                            if (.not. fsym_all_finite(mb, w(:, j0:j1, iae))) then
-                                call fail(FSYM_ERR_NONFINITE_FORCE); return
-                            end if
-                            iw(KW_HAVE_X) = 1; nf = nf + 1
-                        end if
-                        call stage_kick(mb, v(:, j0:j1), w(:, j0:j1, iae), c(k) * h)
-                    case default
-                        ! nothing else can occur here
-                    end select
-                end do
-            end do
-            iw(KW_PC) = nop + 1
-            if (.not. (fsym_all_finite(m, q) .and. fsym_all_finite(m, v))) then
-                call fail(FSYM_ERR_NONFINITE_STATE); return
-            end if
-            ndone = istep
-        end do
-        if (iw(KW_HAVE_A) /= 0) w(:, :, iw(KW_MAP - 1 + SLOT_QLAST)) = q
+        entry_have = iw(KW_HAVE_A:KW_HAVE_X); entry_xshift = rw(KR_XSHIFT)
+        nf_entry = nf; ng_entry = ng
+        call advance(nsteps, kf, fstage, pf, pg)
+        stat = code
+        if (stat == FSYM_SUCCESS) then
+            ndone = nsteps
+            if (iw(KW_HAVE_A) /= 0) w(:, :, iw(KW_MAP - 1 + SLOT_QLAST)) = q
+        else
+            q = w(:, :, iw(KW_MAP - 1 + SLOT_Q0))
+            v = w(:, :, iw(KW_MAP - 1 + SLOT_V0))
+            iw(KW_HAVE_A:KW_HAVE_X) = entry_have; rw(KR_XSHIFT) = entry_xshift
+            nf = nf_entry; ng = ng_entry
+            call advance(kf - 1, kf, fstage, pf0, pg0)   ! cannot fail
+            nf = nf + pf; ng = ng + pg
+            call fsym_kernel_invalidate(iw)
+            iw(KW_PC) = fstage
+            ndone = kf - 1
+        end if
         iw(KW_ACTIVE) = 0
         iw(KW_REQ) = REQ_DONE
 
     contains
 
-        !> a(q) of the block into SLOT_A, checked and counted.
-        subroutine get_force()
-            call kepler_field(d, j1 - j0 + 1, mu, q(:, j0:j1), w(:, j0:j1, ia))
-            if (.not. fsym_all_finite(mb, w(:, j0:j1, ia))) then
-                call fail(FSYM_ERR_NONFINITE_FORCE); return
-            end if
-            iw(KW_HAVE_A) = 1; nf = nf + 1
-        end subroutine get_force
+        !> Up to `nst` steps from the current state and cache. On failure at step `kfail`
+        !> (stage `stage`, error in `code`), it stops there and returns in `dnf`, `dng` the
+        !> evaluations that step had made; the state is then not restored.
+        subroutine advance(nst, kfail, stage, dnf, dng)
+            integer(ik), intent(in) :: nst
+            integer(ik), intent(inout) :: kfail
+            integer, intent(inout) :: stage
+            integer(ik), intent(out) :: dnf, dng
+            integer :: k, have0(3)
+            integer(ik) :: istep, nf0, ng0
+            real(wp) :: shift, xshift0
+            code = FSYM_SUCCESS
+            do istep = 1, nst
+                ! every block starts from the same cache state and counts from the same
+                ! counters
+                have0 = iw(KW_HAVE_A:KW_HAVE_X); xshift0 = rw(KR_XSHIFT)
+                nf0 = nf; ng0 = ng
+                do j0 = 1, n, KEPLER_BLOCK
+                    j1 = min(n, j0 + KEPLER_BLOCK - 1)
+                    mb = d * (j1 - j0 + 1)
+                    iw(KW_HAVE_A:KW_HAVE_X) = have0; rw(KR_XSHIFT) = xshift0
+                    nf = nf0; ng = ng0
+                    do k = 1, nop
+                        select case (op(k))
+                        case (OP_DRIFT)
+                            call stage_drift(mb, q(:, j0:j1), v(:, j0:j1), c(k) * h)
+                            iw(KW_HAVE_A) = 0; iw(KW_HAVE_G) = 0; iw(KW_HAVE_X) = 0
+                        case (OP_KICK)
+                            if (iw(KW_HAVE_A) == 0) then
+                                if (.not. block_force()) exit
+                            end if
+                            call stage_kick(mb, v(:, j0:j1), w(:, j0:j1, ia), c(k) * h)
+                        case (OP_GRAD_KICK)
+                            if (iw(KW_HAVE_A) == 0) then
+                                if (.not. block_force()) exit
+                            end if
+                            if (iw(KW_HAVE_G) == 0) then
+                                call kepler_field_gradient(d, j1 - j0 + 1, mu, q(:, j0:j1), &
+                                                           w(:, j0:j1, ia), w(:, j0:j1, ig))
+                                if (.not. fsym_all_finite(mb, w(:, j0:j1, ig))) then
+                                    code = FSYM_ERR_NONFINITE_FORCE; exit
+                                end if
+                                iw(KW_HAVE_G) = 1; ng = ng + 1
+                            end if
+                            call stage_grad_kick(mb, v(:, j0:j1), w(:, j0:j1, ia), &
+                                                 w(:, j0:j1, ig), c(k) * h, u(k) * h**3)
+                        case (OP_EXTRAP_KICK)
+                            if (iw(KW_HAVE_A) == 0) then
+                                if (.not. block_force()) exit
+                            end if
+                            shift = u(k) * h * h
+                            if (iw(KW_HAVE_X) == 0 .or. rw(KR_XSHIFT) /= shift) then
+                                call stage_shift(mb, w(:, j0:j1, iqe), q(:, j0:j1), &
+                                                 w(:, j0:j1, ia), shift)
+                                rw(KR_XSHIFT) = shift
+                                call kepler_field(d, j1 - j0 + 1, mu, w(:, j0:j1, iqe), &
+                                                  w(:, j0:j1, iae))
+                                if (.not. fsym_all_finite(mb, w(:, j0:j1, iae))) then
+                                    code = FSYM_ERR_NONFINITE_FORCE; exit
+                                end if
+                                iw(KW_HAVE_X) = 1; nf = nf + 1
+                            end if
+                            call stage_kick(mb, v(:, j0:j1), w(:, j0:j1, iae), c(k) * h)
+                        case default
+                            ! nothing else can occur here
+                        end select
+                    end do
+                    if (code /= FSYM_SUCCESS) exit
+                    ! the block's new state, while it is in cache
+                    if (.not. (fsym_all_finite(mb, q(:, j0:j1)) .and. &
+                               fsym_all_finite(mb, v(:, j0:j1)))) then
+                        k = nop + 1; code = FSYM_ERR_NONFINITE_STATE; exit
+                    end if
+                end do
+                if (code /= FSYM_SUCCESS) then
+                    kfail = istep; stage = k; dnf = nf - nf0; dng = ng - ng0
+                    return
+                end if
+            end do
+            dnf = 0; dng = 0
+        end subroutine advance
 
-        !> Undo the step in progress (back to its saved start) and report `code`.
-        subroutine fail(code)
-            integer, intent(in) :: code
-            integer :: pc
-            pc = iw(KW_PC)
-            call fsym_kernel_abort(d, n, q, v, w, nslot, iw)
-            iw(KW_PC) = pc
-            stat = code
-        end subroutine fail
+        !> a(q) of the block j0:j1 into SLOT_A, checked and counted; false (and `code` set)
+        !> when it is not finite.
+        logical function block_force()
+            call kepler_field(d, j1 - j0 + 1, mu, q(:, j0:j1), w(:, j0:j1, ia))
+            block_force = fsym_all_finite(mb, w(:, j0:j1, ia))
+            if (block_force) then
+                iw(KW_HAVE_A) = 1; nf = nf + 1
+            else
+                code = FSYM_ERR_NONFINITE_FORCE
+            end if
+        end function block_force
 
     end subroutine kepler_run_blocks
 
