@@ -52,24 +52,31 @@ cat >> "$tmp" <<'NOTES'
 
 ## Notes on the design (what the tables measure)
 
-- Library step, Kepler path: `integrator_t%step` recognises the library's own
-  `kepler_model_t` (exactly that type) and calls `fsym_kernel_step_kepler`, which runs the
-  whole step in the kernel with the force (`kepler_field`) called directly: no reverse
-  communication and no dynamic dispatch per force. It uses the same stage routines
-  (`stage_drift/kick/grad_kick/shift`), the same force-reuse rules, checks and counters as
-  `fsym_kernel_resume`; `test/test_fastpath.f90` checks bitwise equality of the states, the
-  counters and the failure messages against the general path.
+- `run`, Kepler path: `integrator_t%run` (and `step`, which is `run` of one step) recognises
+  the library's own `kepler_model_t` (exactly that type) and calls
+  `fsym_kernel_run_kepler`, which takes every step in the kernel with the force called
+  directly: no reverse communication, no dynamic dispatch per force, no return to the
+  caller between steps. A planar body keeps its state, forces and cache flags in registers
+  for the whole run; the per-step promises stay (every force and every new state checked
+  for NaN/Inf, a failing step undone, counters exact). The stage updates are the same
+  `axpy`/`axpy2` the general path applies to arrays; `test/test_fastpath.f90` checks that
+  `run(k)` is bitwise `k` general-path steps (states, counters, clock) and that a failing
+  run stops at the same step with the same state, counters and message.
+- `step`: the same kernel path, but one call per step, and each call pays the checks a
+  call must make (initialised? shapes? the cached force still valid for this q? h finite?
+  the state finite on entry?), the save of the state for the restore, and the calls between
+  modules. For one planar body that costs about as much as the force itself: use `run`
+  when the steps need nothing in between.
 - General path: any other model (here an extension of `kepler_model_t`): the kernel returns
   to `integrator_t%step` for every force, which calls the model's type-bound procedure.
-- What is left between the Kepler path and the hand loop for one body (d = 2, n = 1): the
-  state lives in arrays in memory (q, v, the work slots), so every stage is a store and a
-  reload on the critical path, plus per step the checks the library promises (finite state
-  and forces, restore on failure: copies of q and v, first-same-as-last check). The hand loop
-  keeps four scalars in registers. Tried and kept: the Kepler path above, planar/spatial
-  cases of the force written out so that they vectorise, partial sums in the finiteness
-  check (a single running sum was a chain of dependent additions and dominated large
-  arrays), all stages run block by block (64 bodies) so a block stays in cache (a small
-  gain). Tried and dropped: `-flto`, `-mprefer-vector-width=512` (no gain measured).
+- Ensemble: many bodies run stage by stage on blocks of 64 (the loops vectorise); the
+  force (`kepler_field`) works in three passes per block (|q|^2, the factor, the product):
+  a single loop with the strided loads and stores of q(2, n) around the square root and
+  division was 1.7x slower. The hand loop still wins by keeping each body's state in
+  registers through all stages; the library's stages each pass over the block in memory.
+- Tried and dropped: `-flto`, `-mprefer-vector-width=512` (no gain measured); saving the
+  state of every step in the block path (the copies cost a third of the step at n = 1000:
+  a failing step is now rebuilt from the state at the start of the run).
 - Time per step outside the force is the kernel's O(n) work; for the N-body force it is
   O(N) against the force's O(N^2).
 NOTES

@@ -14,6 +14,8 @@ module fsym_kepler
 
     ! bodies per block of `kepler_field` and `kepler_field_gradient`
     integer, parameter :: FIELD_BLOCK = 64
+    ! fewer planar bodies than this take one fused pass
+    integer, parameter :: FIELD_FUSED_BELOW = 8
 
     !> Kepler force model: each column of q is a body attracted by mu at the origin.
     type, extends(force_model_t), public :: kepler_model_t
@@ -245,13 +247,24 @@ contains
     !> y_j = (c / |q_j|^3) x_j for every column j. Works on blocks of `FIELD_BLOCK` bodies
     !> in three passes (|q|^2, the factor, the product), each a simple loop that vectorises;
     !> a single loop doing all three keeps the strided loads and stores of (d, n) arrays in
-    !> the way of the square root and the division (1.7x slower at n = 1000).
+    !> the way of the square root and the division (1.7x slower at n = 1000). A few planar
+    !> bodies take one pass (the passes cost more than they save there).
     pure subroutine scaled_columns(d, n, c, q, x, y)
         integer, intent(in) :: d, n
         real(wp), intent(in) :: c, q(d, n), x(d, n)
         real(wp), intent(out) :: y(d, n)
-        real(wp) :: s(FIELD_BLOCK)
+        real(wp) :: s(FIELD_BLOCK), r2, f
         integer :: i, j, j0, m
+        if (n < FIELD_FUSED_BELOW .and. d == 2) then
+            ! a few planar bodies: one pass (the same operations)
+            do j = 1, n
+                r2 = q(1, j)**2 + q(2, j)**2
+                f = c / (r2 * sqrt(r2))
+                y(1, j) = f * x(1, j)
+                y(2, j) = f * x(2, j)
+            end do
+            return
+        end if
         do j0 = 0, n - 1, FIELD_BLOCK
             m = min(FIELD_BLOCK, n - j0)
             select case (d)
