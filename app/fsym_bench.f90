@@ -221,15 +221,17 @@ contains
     end subroutine bench_ensemble
 
     !> Resident memory while FR (Kepler path), C' (general path) and RKN each run nsteps
-    !> steps (Linux /proc/self/status).
+    !> steps one `step` call at a time, then FR nsteps steps in one `run` call (Linux
+    !> /proc/self/status).
     subroutine bench_memory(nsteps, checkpoints)
         integer(ik), intent(in) :: nsteps
         logical, intent(in) :: checkpoints
-        type(integrator_t) :: integ, integ2
+        type(integrator_t) :: integ, integ2, integ3
         type(kepler_model_t) :: model
         type(general_kepler_t) :: general
         class(stepper_t), allocatable :: rkn
-        real(wp) :: q(2, 1), v(2, 1), q2(2, 1), v2(2, 1), q3(2, 1), v3(2, 1), period, h
+        real(wp) :: q(2, 1), v(2, 1), q2(2, 1), v2(2, 1), q3(2, 1), v3(2, 1), q4(2, 1), v4(2, 1)
+        real(wp) :: period, h
         integer(ik) :: k, next
         integer :: st
         call kepler_paper_orbit(q(:, 1), v(:, 1), period)
@@ -249,10 +251,15 @@ contains
             end if
             if (k == next) next = next * 10_ik
         end do
-        write (output_unit, '(a,i0,a,3es12.4)') 'steps ', integ%steps(), &
-            ' of FR (Kepler path), C'' (general path) and RKN; energies ', &
+        ! and the same number of FR steps in one run call
+        call integ3%init_by_name('FR', model, 2, 1, st)
+        call kepler_paper_orbit(q4(:, 1), v4(:, 1), period)
+        call integ3%run(model, q4, v4, h, nsteps, st)
+        if (checkpoints) call print_mem(nsteps)
+        write (output_unit, '(a,i0,a,4es12.4)') 'steps ', integ%steps(), &
+            ' of FR (Kepler path), C'' (general path), RKN and FR in one run call; energies ', &
             kepler_energy(q(:, 1), v(:, 1)), kepler_energy(q2(:, 1), v2(:, 1)), &
-            kepler_energy(q3(:, 1), v3(:, 1))
+            kepler_energy(q3(:, 1), v3(:, 1)), kepler_energy(q4(:, 1), v4(:, 1))
     end subroutine bench_memory
 
     !> Print VmRSS and VmHWM of this process.

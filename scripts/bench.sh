@@ -27,7 +27,8 @@ fpm build --profile release --flag "$FLAGS" >/dev/null
     echo "## Memory"
     echo
     echo "No allocation after \`init\`: three steppers (FR on the kernel's Kepler path, C' on"
-    echo "the general path with the extrapolated force, RKN) each take N steps; the heap"
+    echo "the general path with the extrapolated force, RKN) each take N steps one \`step\` at a"
+    echo "time, then FR takes N steps in one \`run\` call; the heap"
     echo "counts of valgrind are the same for N = 1e3 and N = 1e5"
     echo "(\`fpm run --flag \"$VGFLAGS\" --runner \"valgrind\" fsym-bench -- steps N\`):"
     echo

@@ -667,15 +667,10 @@ contains
                 do k = 1, nop
                     if (op(k) /= OP_DRIFT .and. hva == 0) then
                         ! every kind of kick needs a(q) first
-                        r2 = q1**2 + q2**2
-                        t3 = r2 * sqrt(r2); ht = .true.
-                        s = -mu / t3
-                        a1 = s * q1
-                        a2 = s * q2
-                        if (.not. (ieee_is_finite(a1) .and. ieee_is_finite(a2))) then
+                        if (.not. planar_force(mu, q1, q2, a1, a2, t3)) then
                             code = FSYM_ERR_NONFINITE_FORCE; exit steps
                         end if
-                        hva = 1; nfb = nfb + 1
+                        ht = .true.; hva = 1; nfb = nfb + 1
                     end if
                     select case (op(k))
                     case (OP_DRIFT)
@@ -711,11 +706,7 @@ contains
                             x1 = axpy(q1, shift, a1)
                             x2 = axpy(q2, shift, a2)
                             xs = shift
-                            r2 = x1**2 + x2**2
-                            s = -mu / (r2 * sqrt(r2))
-                            e1 = s * x1
-                            e2 = s * x2
-                            if (.not. (ieee_is_finite(e1) .and. ieee_is_finite(e2))) then
+                            if (.not. planar_force(mu, x1, x2, e1, e2, r)) then
                                 code = FSYM_ERR_NONFINITE_FORCE; exit steps
                             end if
                             hvx = 1; nfb = nfb + 1
@@ -742,6 +733,20 @@ contains
         end subroutine body
 
     end subroutine kepler_run_2d
+
+    !> Planar Kepler force (f1, f2) = -mu x/|x|^3 with the operations of `kepler_field`, and
+    !> t3 = |x|^3 (r2 sqrt(r2), which the gradient term reuses); false when not finite.
+    logical function planar_force(mu, x1, x2, f1, f2, t3)
+        real(wp), intent(in) :: mu, x1, x2
+        real(wp), intent(out) :: f1, f2, t3
+        real(wp) :: r2, s
+        r2 = x1**2 + x2**2
+        t3 = r2 * sqrt(r2)
+        s = -mu / t3
+        f1 = s * x1
+        f2 = s * x2
+        planar_force = ieee_is_finite(f1) .and. ieee_is_finite(f2)
+    end function planar_force
 
     ! ---------------------------------------------------------------- stage arithmetic
     ! Every update of the state is `axpy` or `axpy2`: the array stages below apply them
