@@ -199,7 +199,8 @@ contains
                 nsteps = nint(fpu_t / h, ik)
                 call fsym_fpu_run(trim(names(k)), fpu_m, fpu_omega, h, nsteps, &
                                   max(1_ik, (nsteps + nsamp - 2) / (nsamp - 1)), &
-                                  fpu_samples(:, :, i, k), fpu_ns(i, k), fpu_dh(i, k), fpu_di(i, k), fpu_stat(i, k), msg)
+                                  fpu_samples(:, :, i, k), fpu_ns(i, k), fpu_dh(i, k), &
+                                  fpu_di(i, k), fpu_stat(i, k), msg)
             end do
         end do
         call say('FPU: energy error against h omega (resonance scan)')

@@ -43,7 +43,8 @@ contains
         integer :: s
         if (n < 1 .or. .not. (ratio > 0.0_wp .and. ratio <= huge(ratio))) then
             call fsym_report(FSYM_ERR_BAD_PARAMETER, 'linear chain needs n >= 1 and a finite '// &
-                             'ratio > 0', stat, errmsg); return
+                             'ratio > 0', stat, errmsg)
+            return
         end if
         model%k = [(merge(1.0_wp, ratio, mod(s, 2) == 0), s = 0, n)]
         model%b = [(0.0_wp, s = 0, n)]
@@ -60,7 +61,8 @@ contains
         integer :: s
         if (m < 1 .or. .not. (omega > 0.0_wp .and. omega <= huge(omega))) then
             call fsym_report(FSYM_ERR_BAD_PARAMETER, 'FPU chain needs m >= 1 and a finite '// &
-                             'omega > 0', stat, errmsg); return
+                             'omega > 0', stat, errmsg)
+            return
         end if
         model%k = [(merge(0.5_wp * omega**2, 0.0_wp, mod(s, 2) == 1), s = 0, 2 * m)]
         model%b = [(merge(0.0_wp, 4.0_wp, mod(s, 2) == 1), s = 0, 2 * m)]

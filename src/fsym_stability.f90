@@ -169,11 +169,13 @@ contains
         rho = 0.0_wp
         if (size(map, 2) /= n .or. n < 1) then
             call fsym_report(FSYM_ERR_SHAPE, 'spectral radius of a non-square matrix', stat, &
-                             errmsg); return
+                             errmsg)
+            return
         end if
         if (.not. all(abs(map) <= huge(1.0_wp))) then
             call fsym_report(FSYM_ERR_NONFINITE_STATE, 'spectral radius of a non-finite matrix', &
-                             stat, errmsg); return
+                             stat, errmsg)
+            return
         end if
         a = map
         allocate (wr(n), wi(n))
