@@ -32,7 +32,7 @@ program fsym_workprec
     csv_path = 'doc/work-precision.csv'
     h5_path = 'out/work-precision.h5'
     hardware = 'unknown'; compiler = 'unknown'; flags = 'unknown'
-    nsweep = [12, 8]
+    nsweep = [12, 12]
     if (command_argument_count() >= 6) then
         call get_command_argument(1, md_path)
         call get_command_argument(2, csv_path)
