@@ -77,8 +77,8 @@ contains
             end select
             if (ios /= 0) then
                 close (u)
-                call fsym_report(FSYM_ERR_IO, trim(path)//': cannot read line '//itoa(lineno), &
-                                 stat, errmsg)
+                call fsym_report(FSYM_ERR_IO, trim(path)//': cannot read line '// &
+                                 fsym_int_text(lineno), stat, errmsg)
                 return
             end if
         end do
@@ -100,13 +100,5 @@ contains
         dat%qref = sref(1:3, 1:n0); dat%vref = sref(4:6, 1:n0)
         stat = FSYM_SUCCESS
     end subroutine read_solar_data
-
-    pure function itoa(k) result(s)
-        integer, intent(in) :: k
-        character(len=:), allocatable :: s
-        character(len=12) :: buf
-        write (buf, '(i0)') k
-        s = trim(buf)
-    end function itoa
 
 end module fsym_solar_data

@@ -533,14 +533,6 @@ contains
 
     ! ---------------------------------------------------------------- results report
 
-    pure function inum(i) result(s)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: s
-        character(len=16) :: buf
-        write (buf, '(i0)') i
-        s = trim(buf)
-    end function inum
-
     pure function num(x) result(s)
         real(wp), intent(in) :: x
         character(len=:), allocatable :: s
@@ -579,7 +571,7 @@ contains
         do m = 1, size(names)
             call summarize(names(m), r1(m), r2(m))
         end do
-        call study_say('  per-method table done ('//inum(size(names))//' methods)')
+        call study_say('  per-method table done ('//fsym_int_text(size(names))//' methods)')
         call m2_scan(t1, em, pm, t1zero, found)
         call gfr5_scan(al, eg, pg)
         path = results_path
@@ -598,8 +590,8 @@ contains
             '|---|---|---|---|---|---|---|---|'
         do m = 1, size(names)
             write (u, '(a)') '| '//trim(names(m))//' | '//trim(merge('yes', 'no ', &
-                r1(m)%forward))//' | '//inum(r1(m)%nforce)//' | '// &
-                inum(r1(m)%ngrad)//' | '//num(r1(m)%emax)//' | '// &
+                r1(m)%forward))//' | '//fsym_int_text(r1(m)%nforce)//' | '// &
+                fsym_int_text(r1(m)%ngrad)//' | '//num(r1(m)%emax)//' | '// &
                 num(fsym_relative_difference(r1(m)%emax, r2(m)%emax))//' | '// &
                 num(r1(m)%pend)//' | '//num(fsym_relative_difference(r1(m)%pend, r2(m)%pend))//' |'
         end do

@@ -135,6 +135,7 @@ contains
         class(recorder_t), intent(inout), optional :: recorder  !! force-point recorder
         integer :: d, n, st, req, mst, ia, ig, iqe, iae
         integer(ik) :: nf, ng, istep
+        logical :: ok, taken
 
         if (.not. self%ready) then
             call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'integrator_t%step before init', stat, &
@@ -142,17 +143,11 @@ contains
             return
         end if
         call self%dims(d, n)
-        if (size(q, 1) /= d .or. size(q, 2) /= n .or. size(v, 1) /= d .or. size(v, 2) /= n) then
-            call fsym_report(FSYM_ERR_SHAPE, shape_text(d, n, q, v), stat, errmsg); return
-        end if
-        ! Specialised path for the library's Kepler model: see `kepler_steps`
-        if (.not. (present(recorder) .or. self%iw(KW_COMP) /= 0)) then
-            select type (model)
-            type is (kepler_model_t)
-                call kepler_steps(self, model, d, n, q, v, h, 1_ik, stat, errmsg)
-                return
-            end select
-        end if
+        call check_shapes(d, n, q, v, ok, stat, errmsg)
+        if (.not. ok) return
+        call kepler_steps(self, model, d, n, q, v, h, 1_ik, present(recorder), taken, stat, &
+                          errmsg)
+        if (taken) return
         if (self%needs_g) then
             if (.not. model%has_gradient()) then
                 call fsym_report(FSYM_ERR_NO_GRADIENT, 'method '//self%sc%name// &
@@ -217,18 +212,14 @@ contains
         character(len=*), intent(inout), optional :: errmsg   !! message on error
         class(recorder_t), intent(inout), optional :: recorder  !! force-point recorder
         integer :: d, n
-        if (self%ready .and. .not. (present(recorder) .or. self%iw(KW_COMP) /= 0)) then
-            select type (model)
-            type is (kepler_model_t)
-                call self%dims(d, n)
-                if (size(q, 1) /= d .or. size(q, 2) /= n .or. size(v, 1) /= d .or. &
-                    size(v, 2) /= n) then
-                    call fsym_report(FSYM_ERR_SHAPE, shape_text(d, n, q, v), stat, errmsg)
-                    return
-                end if
-                call kepler_steps(self, model, d, n, q, v, h, nsteps, stat, errmsg)
-                return
-            end select
+        logical :: ok, taken
+        if (self%ready) then
+            call self%dims(d, n)
+            call check_shapes(d, n, q, v, ok, stat, errmsg)
+            if (.not. ok) return
+            call kepler_steps(self, model, d, n, q, v, h, nsteps, present(recorder), taken, &
+                              stat, errmsg)
+            if (taken) return
         end if
         call stepper_run(self, model, q, v, h, nsteps, stat, errmsg, recorder)
     end subroutine integrator_run
@@ -238,21 +229,34 @@ contains
     !> kernel takes all `nsteps` steps in one call with the force called directly (no
     !> reverse communication, no dynamic dispatch per force, no return between steps); the
     !> same stage arithmetic as the general path, bitwise the same result. That model has
-    !> the gradient term, so no check for it is needed.
-    subroutine kepler_steps(self, model, d, n, q, v, h, nsteps, stat, errmsg)
+    !> the gradient term, so no check for it is needed. `taken` is false (and nothing done)
+    !> for any other model, with a recorder, or with compensation.
+    subroutine kepler_steps(self, model, d, n, q, v, h, nsteps, recorded, taken, stat, errmsg)
         class(integrator_t), intent(inout) :: self
-        type(kepler_model_t), intent(in) :: model
+        class(force_model_t), intent(in) :: model
         integer, intent(in) :: d, n
         real(wp), intent(inout) :: q(d, n), v(d, n)
         real(wp), intent(in) :: h
         integer(ik), intent(in) :: nsteps
+        logical, intent(in) :: recorded
+        logical, intent(out) :: taken
         integer, intent(out), optional :: stat
         character(len=*), intent(inout), optional :: errmsg
         integer(ik) :: nf, ng, ndone
         integer :: st
+        real(wp) :: mu
+        taken = .false.
+        if (recorded .or. self%iw(KW_COMP) /= 0) return
+        select type (model)
+        type is (kepler_model_t)
+            mu = model%mu
+        class default
+            return
+        end select
+        taken = .true.
         call self%counters(nf, ng, 0)
         call fsym_kernel_run_kepler(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, d, n, q, v, &
-                                    h, model%mu, nsteps, self%w, self%nslot, self%iw, self%rw, &
+                                    h, mu, nsteps, self%w, self%nslot, self%iw, self%rw, &
                                     nf, ng, ndone, st)
         call self%counters(nf, ng, 1)
         call self%count_step(h, ndone)
@@ -272,11 +276,11 @@ contains
         character(len=*), intent(inout), optional :: errmsg
         if (at_begin) then
             call fsym_report(st, 'method '//self%sc%name//', step '// &
-                             itoa(self%steps() + 1), stat, errmsg)
+                             fsym_int_text(self%steps() + 1), stat, errmsg)
         else
             call fsym_report(st, 'method '//self%sc%name//', step '// &
-                             itoa(self%steps() + 1)//', stage '// &
-                             itoa(int(self%iw(KW_PC), ik))//' ('// &
+                             fsym_int_text(self%steps() + 1)//', stage '// &
+                             fsym_int_text(self%iw(KW_PC))//' ('// &
                              fsym_op_name(self%sc%op(min(self%iw(KW_PC), self%sc%nop)))// &
                              '); state restored', stat, errmsg)
         end if
@@ -312,13 +316,16 @@ contains
         integrator_work_size = m
     end function integrator_work_size
 
-    pure function itoa(k) result(s)
-        integer(ik), intent(in) :: k
-        character(len=:), allocatable :: s
-        character(len=24) :: buf
-        write (buf, '(i0)') k
-        s = trim(buf)
-    end function itoa
+    !> `ok` when q and v have the shape (d, n); else FSYM_ERR_SHAPE is reported.
+    subroutine check_shapes(d, n, q, v, ok, stat, errmsg)
+        integer, intent(in) :: d, n
+        real(wp), intent(in) :: q(:, :), v(:, :)
+        logical, intent(out) :: ok
+        integer, intent(out), optional :: stat
+        character(len=*), intent(inout), optional :: errmsg
+        ok = size(q, 1) == d .and. size(q, 2) == n .and. size(v, 1) == d .and. size(v, 2) == n
+        if (.not. ok) call fsym_report(FSYM_ERR_SHAPE, shape_text(d, n, q, v), stat, errmsg)
+    end subroutine check_shapes
 
     function shape_text(d, n, q, v) result(s)
         integer, intent(in) :: d, n

@@ -256,7 +256,7 @@ contains
                 if (comp) then
                     call add_compensated(d * n, q, w(:, :, iqc), c(k) * h, v)
                 else
-                    call stage_drift(d * n, q, v, c(k) * h)
+                    call stage_add(d * n, q, v, c(k) * h)
                 end if
                 call fsym_kernel_invalidate(iw)
             case (OP_KICK)
@@ -266,7 +266,7 @@ contains
                 if (comp) then
                     call add_compensated(d * n, v, w(:, :, ivc), c(k) * h, w(:, :, ia))
                 else
-                    call stage_kick(d * n, v, w(:, :, ia), c(k) * h)
+                    call stage_add(d * n, v, w(:, :, ia), c(k) * h)
                 end if
             case (OP_GRAD_KICK)
                 if (iw(KW_HAVE_A) == 0) then
@@ -296,7 +296,7 @@ contains
                 if (comp) then
                     call add_compensated(d * n, v, w(:, :, ivc), c(k) * h, w(:, :, iae))
                 else
-                    call stage_kick(d * n, v, w(:, :, iae), c(k) * h)
+                    call stage_add(d * n, v, w(:, :, iae), c(k) * h)
                 end if
             case default
                 ! nothing else can occur here
@@ -454,13 +454,13 @@ contains
                     do k = 1, nop
                         select case (op(k))
                         case (OP_DRIFT)
-                            call stage_drift(mb, q(:, j0:j1), v(:, j0:j1), c(k) * h)
+                            call stage_add(mb, q(:, j0:j1), v(:, j0:j1), c(k) * h)
                             iw(KW_HAVE_A) = 0; iw(KW_HAVE_G) = 0; iw(KW_HAVE_X) = 0
                         case (OP_KICK)
                             if (iw(KW_HAVE_A) == 0) then
                                 if (.not. block_force()) exit
                             end if
-                            call stage_kick(mb, v(:, j0:j1), w(:, j0:j1, ia), c(k) * h)
+                            call stage_add(mb, v(:, j0:j1), w(:, j0:j1, ia), c(k) * h)
                         case (OP_GRAD_KICK)
                             if (iw(KW_HAVE_A) == 0) then
                                 if (.not. block_force()) exit
@@ -491,7 +491,7 @@ contains
                                 end if
                                 iw(KW_HAVE_X) = 1; nf = nf + 1
                             end if
-                            call stage_kick(mb, v(:, j0:j1), w(:, j0:j1, iae), c(k) * h)
+                            call stage_add(mb, v(:, j0:j1), w(:, j0:j1, iae), c(k) * h)
                         case default
                             ! nothing else can occur here
                         end select
@@ -764,21 +764,13 @@ contains
         axpy2 = x + (s * y + r * z)
     end function axpy2
 
-    !> Drift q <- q + s v (s = c h).
-    pure subroutine stage_drift(m, q, v, s)
+    !> Drift q <- q + s v or kick v <- v + s a (s = c h): x <- x + s y.
+    pure subroutine stage_add(m, x, y, s)
         integer, intent(in) :: m
-        real(wp), intent(inout) :: q(m)
-        real(wp), intent(in) :: v(m), s
-        q = axpy(q, s, v)
-    end subroutine stage_drift
-
-    !> Kick v <- v + s a (s = c h).
-    pure subroutine stage_kick(m, v, a, s)
-        integer, intent(in) :: m
-        real(wp), intent(inout) :: v(m)
-        real(wp), intent(in) :: a(m), s
-        v = axpy(v, s, a)
-    end subroutine stage_kick
+        real(wp), intent(inout) :: x(m)
+        real(wp), intent(in) :: y(m), s
+        x = axpy(x, s, y)
+    end subroutine stage_add
 
     !> Gradient kick v <- v + (s a + r g) (s = c h, r = u h^3).
     pure subroutine stage_grad_kick(m, v, a, g, s, r)

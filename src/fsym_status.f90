@@ -3,6 +3,7 @@
 !> status, ends the program with the message.
 module fsym_status
     use, intrinsic :: iso_fortran_env, only: error_unit
+    use fsym_kinds, only: ik
     implicit none
     private
 
@@ -47,7 +48,12 @@ module fsym_status
     integer, parameter, public :: FSYM_ERR_LAST = 18
         !! Largest status code in use.
 
-    public :: fsym_status_message, fsym_report, fsym_pass
+    public :: fsym_status_message, fsym_report, fsym_pass, fsym_int_text
+
+    !> Decimal text of an integer (default kind or `ik`), for messages and labels.
+    interface fsym_int_text
+        module procedure int_text_default, int_text_ik
+    end interface fsym_int_text
 
 contains
 
@@ -117,5 +123,23 @@ contains
             error stop 1
         end if
     end subroutine fsym_pass
+
+    !> Decimal text of a default integer.
+    pure function int_text_default(k) result(s)
+        integer, intent(in) :: k                  !! the integer
+        character(len=:), allocatable :: s
+        character(len=12) :: buf
+        write (buf, '(i0)') k
+        s = trim(buf)
+    end function int_text_default
+
+    !> Decimal text of an integer(ik).
+    pure function int_text_ik(k) result(s)
+        integer(ik), intent(in) :: k              !! the integer
+        character(len=:), allocatable :: s
+        character(len=21) :: buf
+        write (buf, '(i0)') k
+        s = trim(buf)
+    end function int_text_ik
 
 end module fsym_status
