@@ -71,15 +71,16 @@ cat >> "$tmp" <<'NOTES'
 - General path: any other model (here an extension of `kepler_model_t`): the kernel returns
   to `integrator_t%step` for every force, which calls the model's type-bound procedure.
 - Ensemble: many bodies run stage by stage on blocks of 64 (the loops vectorise); the
-  force (`kepler_field`) works in three passes per block (|q|^2, the factor, the product):
-  a single loop with the strided loads and stores of q(2, n) around the square root and
-  division was 1.7x slower. The hand loop still wins by keeping each body's state in
-  registers through all stages; the library's stages each pass over the block in memory.
-- Tried and dropped: `-flto`, `-mprefer-vector-width=512` (no gain measured); saving the
-  state of every step in the block path (the copies cost a third of the step at n = 1000:
-  a failing step is now rebuilt from the state at the start of the run); planar bodies in
-  groups of 16 held in local arrays through all steps (state in "lanes"): 3-8x slower, as
-  the arrays stayed in memory and every stage became a short loop of its own.
+  force (`kepler_field`) works in three passes per block (|q|^2, the factor, the product).
+  The hand loop still wins by keeping each body's state in registers through all stages;
+  the library's stages each pass over the block in memory.
+- Tried during development and dropped because they were slower (on code not kept, so no
+  figures here): a single loop for the force with the strided loads and stores of q(2, n)
+  around the square root and division; saving the state of every step in the block path
+  (a failing step is now rebuilt from the state at the start of the run instead); planar
+  bodies in groups of 16 held in local arrays through all steps ("lanes": the arrays
+  stayed in memory and every stage became a short loop of its own); `-flto` and
+  `-mprefer-vector-width=512` brought no gain.
 - Time per step outside the force is the kernel's O(n) work; for the N-body force it is
   O(N) against the force's O(N^2).
 NOTES

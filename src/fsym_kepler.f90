@@ -247,7 +247,7 @@ contains
     !> y_j = (c / |q_j|^3) x_j for every column j. Works on blocks of `FIELD_BLOCK` bodies
     !> in three passes (|q|^2, the factor, the product), each a simple loop that vectorises;
     !> a single loop doing all three keeps the strided loads and stores of (d, n) arrays in
-    !> the way of the square root and the division (1.7x slower at n = 1000). A few planar
+    !> the way of the square root and the division (it was slower). A few planar
     !> bodies take one pass (the passes cost more than they save there).
     pure subroutine scaled_columns(d, n, c, q, x, y)
         integer, intent(in) :: d, n
