@@ -22,8 +22,8 @@ contains
     !> a = 0.
     subroutine zero_acceleration(self, q, a, stat)
         class(zero_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)              !! positions
-        real(wp), intent(out) :: a(:, :)             !! accelerations (zero)
+        real(wp), intent(in), contiguous :: q(:, :)              !! positions
+        real(wp), intent(out), contiguous :: a(:, :)             !! accelerations (zero)
         integer, intent(inout) :: stat               !! unchanged
         a = 0.0_wp
     end subroutine zero_acceleration

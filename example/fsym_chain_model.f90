@@ -23,8 +23,8 @@ contains
     !> a_j = (1/m_j) sum of the spring forces on mass j; stat = 1 if two neighbours coincide.
     subroutine chain_acceleration(self, q, a, stat)
         class(chain_model_t), intent(inout) :: self  !! the chain
-        real(wp), intent(in) :: q(:, :)               !! positions (3, n)
-        real(wp), intent(out) :: a(:, :)              !! accelerations (3, n)
+        real(wp), intent(in), contiguous :: q(:, :)               !! positions (3, n)
+        real(wp), intent(out), contiguous :: a(:, :)              !! accelerations (3, n)
         integer, intent(inout) :: stat                !! set to 1 on failure
         real(wp) :: dq(size(q, 1)), r, f(size(q, 1))
         integer :: j
@@ -46,7 +46,7 @@ contains
     !> Sum of k_j (r_j - len0)^2 / 2.
     subroutine chain_potential(self, q, epot, stat)
         class(chain_model_t), intent(inout) :: self  !! the chain
-        real(wp), intent(in) :: q(:, :)               !! positions (3, n)
+        real(wp), intent(in), contiguous :: q(:, :)               !! positions (3, n)
         real(wp), intent(out) :: epot                 !! potential energy
         integer, intent(inout) :: stat                !! never set
         integer :: j

@@ -15,8 +15,8 @@ contains
     !> a = -q.
     subroutine plain_acceleration(self, q, a, stat)
         class(plain_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)               !! positions
-        real(wp), intent(out) :: a(:, :)              !! accelerations
+        real(wp), intent(in), contiguous :: q(:, :)               !! positions
+        real(wp), intent(out), contiguous :: a(:, :)              !! accelerations
         integer, intent(inout) :: stat                !! never set
         a = -q
     end subroutine plain_acceleration

@@ -64,8 +64,8 @@ contains
 
     subroutine c_model_acceleration(self, q, a, stat)
         class(c_model_t), intent(inout) :: self
-        real(wp), intent(in) :: q(:, :)
-        real(wp), intent(out) :: a(:, :)
+        real(wp), intent(in), contiguous :: q(:, :)
+        real(wp), intent(out), contiguous :: a(:, :)
         integer, intent(inout) :: stat
         procedure(c_accel_iface), pointer :: f
         call c_f_procpointer(self%accel, f)
@@ -74,9 +74,9 @@ contains
 
     subroutine c_model_gradient(self, q, a, g, stat)
         class(c_model_t), intent(inout) :: self
-        real(wp), intent(in) :: q(:, :)
-        real(wp), intent(in) :: a(:, :)
-        real(wp), intent(out) :: g(:, :)
+        real(wp), intent(in), contiguous :: q(:, :)
+        real(wp), intent(in), contiguous :: a(:, :)
+        real(wp), intent(out), contiguous :: g(:, :)
         integer, intent(inout) :: stat
         procedure(c_grad_iface), pointer :: f
         if (.not. c_associated(self%grad)) then

@@ -31,8 +31,8 @@ module fsym_force
             import :: force_model_t, wp
             implicit none
             class(force_model_t), intent(inout) :: self  !! the model (may keep counters)
-            real(wp), intent(in) :: q(:, :)               !! positions (d, n)
-            real(wp), intent(out) :: a(:, :)              !! accelerations (d, n)
+            real(wp), intent(in), contiguous :: q(:, :)               !! positions (d, n)
+            real(wp), intent(out), contiguous :: a(:, :)              !! accelerations (d, n)
             integer, intent(inout) :: stat                !! 0 on entry; non-zero = failure
         end subroutine acceleration_iface
     end interface
@@ -64,9 +64,9 @@ contains
     !> `has_gradient`.
     subroutine force_no_gradient(self, q, a, g, stat)
         class(force_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)               !! positions (d, n)
-        real(wp), intent(in) :: a(:, :)               !! accelerations at q, already computed
-        real(wp), intent(out) :: g(:, :)              !! gradient term (d, n)
+        real(wp), intent(in), contiguous :: q(:, :)               !! positions (d, n)
+        real(wp), intent(in), contiguous :: a(:, :)               !! accelerations at q, already computed
+        real(wp), intent(out), contiguous :: g(:, :)              !! gradient term (d, n)
         integer, intent(inout) :: stat                !! 0 on entry; non-zero = failure
         g = 0.0_wp
         stat = 1
@@ -81,7 +81,7 @@ contains
     !> Default potential: not provided (returns 0 and sets `stat` = 1).
     subroutine force_no_potential(self, q, epot, stat)
         class(force_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)               !! positions (d, n)
+        real(wp), intent(in), contiguous :: q(:, :)               !! positions (d, n)
         real(wp), intent(out) :: epot                 !! total potential energy
         integer, intent(inout) :: stat                !! 0 on entry; non-zero = failure
         epot = 0.0_wp

@@ -114,8 +114,8 @@ contains
     !> a_j = phi'_j(d_j) - phi'_{j-1}(d_{j-1}).
     subroutine chain_acceleration(self, q, a, stat)
         class(spring_chain_model_t), intent(inout) :: self  !! the chain
-        real(wp), intent(in) :: q(:, :)                      !! positions (1, n)
-        real(wp), intent(out) :: a(:, :)                     !! accelerations (1, n)
+        real(wp), intent(in), contiguous :: q(:, :)                      !! positions (1, n)
+        real(wp), intent(out), contiguous :: a(:, :)                     !! accelerations (1, n)
         integer, intent(inout) :: stat                       !! 1 when the shape is wrong
         integer :: s, n
         real(wp) :: d, f
@@ -136,9 +136,9 @@ contains
     !> (H w)_j = phi''_{j-1} (w_j - w_{j-1}) - phi''_j (w_{j+1} - w_j).
     subroutine chain_gradient(self, q, a, g, stat)
         class(spring_chain_model_t), intent(inout) :: self  !! the chain
-        real(wp), intent(in) :: q(:, :)                      !! positions (1, n)
-        real(wp), intent(in) :: a(:, :)                      !! accelerations at q
-        real(wp), intent(out) :: g(:, :)                     !! gradient term (1, n)
+        real(wp), intent(in), contiguous :: q(:, :)                      !! positions (1, n)
+        real(wp), intent(in), contiguous :: a(:, :)                      !! accelerations at q
+        real(wp), intent(out), contiguous :: g(:, :)                     !! gradient term (1, n)
         integer, intent(inout) :: stat                       !! 1 when the shape is wrong
         integer :: s, n
         real(wp) :: d, f
@@ -165,7 +165,7 @@ contains
     !> sum_s k_s d_s^2/2 + b_s d_s^4/4.
     subroutine chain_potential(self, q, epot, stat)
         class(spring_chain_model_t), intent(inout) :: self  !! the chain
-        real(wp), intent(in) :: q(:, :)                      !! positions (1, n)
+        real(wp), intent(in), contiguous :: q(:, :)                      !! positions (1, n)
         real(wp), intent(out) :: epot                        !! potential energy
         integer, intent(inout) :: stat                       !! 1 when the shape is wrong
         integer :: s, n

@@ -207,8 +207,8 @@ contains
     !> Accelerations of every column of q.
     subroutine kepler_model_acceleration(self, q, a, stat)
         class(kepler_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)                !! positions (d, n)
-        real(wp), intent(out) :: a(:, :)               !! accelerations (d, n)
+        real(wp), intent(in), contiguous :: q(:, :)                !! positions (d, n)
+        real(wp), intent(out), contiguous :: a(:, :)               !! accelerations (d, n)
         integer, intent(inout) :: stat                 !! unchanged: never fails itself
         call kepler_field(size(q, 1), size(q, 2), self%mu, q, a)
     end subroutine kepler_model_acceleration
@@ -216,9 +216,9 @@ contains
     !> Gradient term of every column: -4 mu^2 q/|q|^6.
     subroutine kepler_model_gradient(self, q, a, g, stat)
         class(kepler_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)                !! positions (d, n)
-        real(wp), intent(in) :: a(:, :)                !! accelerations at q (used: g = 4 a/r^3)
-        real(wp), intent(out) :: g(:, :)               !! gradient term (d, n)
+        real(wp), intent(in), contiguous :: q(:, :)                !! positions (d, n)
+        real(wp), intent(in), contiguous :: a(:, :)                !! accelerations at q (used: g = 4 a/r^3)
+        real(wp), intent(out), contiguous :: g(:, :)               !! gradient term (d, n)
         integer, intent(inout) :: stat                 !! unchanged: never fails itself
         call kepler_field_gradient(size(q, 1), size(q, 2), self%mu, q, a, g)
     end subroutine kepler_model_gradient
@@ -315,7 +315,7 @@ contains
     !> Total potential energy of all columns.
     subroutine kepler_model_potential(self, q, epot, stat)
         class(kepler_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)                !! positions (d, n)
+        real(wp), intent(in), contiguous :: q(:, :)                !! positions (d, n)
         real(wp), intent(out) :: epot                  !! sum of -mu/|q_j|
         integer, intent(inout) :: stat                 !! unchanged: never fails itself
         integer :: j

@@ -33,8 +33,8 @@ contains
     !> a = -omega^2 q.
     subroutine osc_acceleration(self, q, a, stat)
         class(oscillator_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)                    !! positions
-        real(wp), intent(out) :: a(:, :)                   !! accelerations
+        real(wp), intent(in), contiguous :: q(:, :)                    !! positions
+        real(wp), intent(out), contiguous :: a(:, :)                   !! accelerations
         integer, intent(inout) :: stat                     !! unchanged
         a = -self%omega**2 * q
     end subroutine osc_acceleration
@@ -42,9 +42,9 @@ contains
     !> g = grad |a|^2 = 2 omega^4 q.
     subroutine osc_gradient(self, q, a, g, stat)
         class(oscillator_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)                    !! positions
-        real(wp), intent(in) :: a(:, :)                    !! accelerations at q
-        real(wp), intent(out) :: g(:, :)                   !! gradient term
+        real(wp), intent(in), contiguous :: q(:, :)                    !! positions
+        real(wp), intent(in), contiguous :: a(:, :)                    !! accelerations at q
+        real(wp), intent(out), contiguous :: g(:, :)                   !! gradient term
         integer, intent(inout) :: stat                     !! unchanged
         g = 2.0_wp * self%omega**4 * q
     end subroutine osc_gradient
@@ -58,7 +58,7 @@ contains
     !> omega^2 |q|^2 / 2 summed.
     subroutine osc_potential(self, q, epot, stat)
         class(oscillator_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)                    !! positions
+        real(wp), intent(in), contiguous :: q(:, :)                    !! positions
         real(wp), intent(out) :: epot                      !! potential energy
         integer, intent(inout) :: stat                     !! unchanged
         epot = 0.5_wp * self%omega**2 * sum(q**2)
@@ -67,8 +67,8 @@ contains
     !> a = (-x - 2xy, -y - x^2 + y^2).
     subroutine hh_acceleration(self, q, a, stat)
         class(henon_heiles_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)                      !! positions (2, n)
-        real(wp), intent(out) :: a(:, :)                     !! accelerations
+        real(wp), intent(in), contiguous :: q(:, :)                      !! positions (2, n)
+        real(wp), intent(out), contiguous :: a(:, :)                     !! accelerations
         integer, intent(inout) :: stat                       !! unchanged
         integer :: j
         do j = 1, size(q, 2)
@@ -80,9 +80,9 @@ contains
     !> g = grad |a|^2 = 2 J^T a with J the Jacobian of a.
     subroutine hh_gradient(self, q, a, g, stat)
         class(henon_heiles_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)                      !! positions (2, n)
-        real(wp), intent(in) :: a(:, :)                      !! accelerations at q
-        real(wp), intent(out) :: g(:, :)                     !! gradient term
+        real(wp), intent(in), contiguous :: q(:, :)                      !! positions (2, n)
+        real(wp), intent(in), contiguous :: a(:, :)                      !! accelerations at q
+        real(wp), intent(out), contiguous :: g(:, :)                     !! gradient term
         integer, intent(inout) :: stat                       !! unchanged
         integer :: j
         real(wp) :: x, y
@@ -102,7 +102,7 @@ contains
     !> Henon-Heiles potential summed over columns.
     subroutine hh_potential(self, q, epot, stat)
         class(henon_heiles_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)                      !! positions (2, n)
+        real(wp), intent(in), contiguous :: q(:, :)                      !! positions (2, n)
         real(wp), intent(out) :: epot                        !! potential energy
         integer, intent(inout) :: stat                       !! unchanged
         epot = sum(0.5_wp * (q(1, :)**2 + q(2, :)**2) + q(1, :)**2 * q(2, :) - q(2, :)**3 / 3.0_wp)

@@ -152,8 +152,8 @@ contains
     !> Accelerations (q must be (3, size(m))).
     subroutine nbody_acceleration(self, q, a, stat)
         class(nbody_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)               !! positions (3, n)
-        real(wp), intent(out) :: a(:, :)              !! accelerations (3, n)
+        real(wp), intent(in), contiguous :: q(:, :)               !! positions (3, n)
+        real(wp), intent(out), contiguous :: a(:, :)              !! accelerations (3, n)
         integer, intent(inout) :: stat                !! set to FSYM_ERR_SHAPE on a bad shape
         integer :: n
         n = size(q, 2)
@@ -169,9 +169,9 @@ contains
     !> Gradient term (see the module description).
     subroutine nbody_gradient(self, q, a, g, stat)
         class(nbody_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)               !! positions (3, n)
-        real(wp), intent(in) :: a(:, :)               !! accelerations at q
-        real(wp), intent(out) :: g(:, :)              !! gradient term (3, n)
+        real(wp), intent(in), contiguous :: q(:, :)               !! positions (3, n)
+        real(wp), intent(in), contiguous :: a(:, :)               !! accelerations at q
+        real(wp), intent(out), contiguous :: g(:, :)              !! gradient term (3, n)
         integer, intent(inout) :: stat                !! set to FSYM_ERR_SHAPE on a bad shape
         integer :: n
         n = size(q, 2)
@@ -193,7 +193,7 @@ contains
     !> Potential energy.
     subroutine nbody_potential_tb(self, q, epot, stat)
         class(nbody_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in) :: q(:, :)               !! positions (3, n)
+        real(wp), intent(in), contiguous :: q(:, :)               !! positions (3, n)
         real(wp), intent(out) :: epot                 !! potential energy
         integer, intent(inout) :: stat                !! set on a bad shape
         epot = 0.0_wp

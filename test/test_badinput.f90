@@ -44,8 +44,8 @@ contains
 
     subroutine faulty_acc(self, q, a, stat)
         class(faulty_model_t), intent(inout) :: self
-        real(wp), intent(in) :: q(:, :)
-        real(wp), intent(out) :: a(:, :)
+        real(wp), intent(in), contiguous :: q(:, :)
+        real(wp), intent(out), contiguous :: a(:, :)
         integer, intent(inout) :: stat
         self%calls = self%calls + 1
         a = -q
@@ -54,9 +54,9 @@ contains
 
     subroutine faulty_grad(self, q, a, g, stat)
         class(faulty_model_t), intent(inout) :: self
-        real(wp), intent(in) :: q(:, :)
-        real(wp), intent(in) :: a(:, :)
-        real(wp), intent(out) :: g(:, :)
+        real(wp), intent(in), contiguous :: q(:, :)
+        real(wp), intent(in), contiguous :: a(:, :)
+        real(wp), intent(out), contiguous :: g(:, :)
         integer, intent(inout) :: stat
         self%calls = self%calls + 1
         g = 2.0_wp * q

@@ -39,16 +39,16 @@ contains
 
     subroutine plain_acc(self, q, a, stat)
         class(plain_model_t), intent(inout) :: self
-        real(wp), intent(in) :: q(:, :)
-        real(wp), intent(out) :: a(:, :)
+        real(wp), intent(in), contiguous :: q(:, :)
+        real(wp), intent(out), contiguous :: a(:, :)
         integer, intent(inout) :: stat
         a = -q
     end subroutine plain_acc
 
     subroutine flaky_acc(self, q, a, stat)
         class(flaky_model_t), intent(inout) :: self
-        real(wp), intent(in) :: q(:, :)
-        real(wp), intent(out) :: a(:, :)
+        real(wp), intent(in), contiguous :: q(:, :)
+        real(wp), intent(out), contiguous :: a(:, :)
         integer, intent(inout) :: stat
         self%calls = self%calls + 1
         a = -q
