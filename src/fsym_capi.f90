@@ -144,7 +144,7 @@ contains
         type(c_handle_t), pointer :: p
         real(wp), pointer, contiguous :: qf(:, :), vf(:, :)
         character(len=256) :: msg
-        integer :: k, st
+        integer :: st
         if (.not. (c_associated(handle) .and. c_associated(q) .and. c_associated(v))) then
             stat = FSYM_ERR_NOT_INITIALIZED; return
         end if
@@ -152,10 +152,7 @@ contains
         call c_f_pointer(q, qf, [p%d, p%n])
         call c_f_pointer(v, vf, [p%d, p%n])
         st = FSYM_SUCCESS
-        do k = 1, nstep
-            call p%it%step(p%model, qf, vf, real(h, wp), st, msg)
-            if (st /= FSYM_SUCCESS) exit
-        end do
+        if (nstep > 0) call p%it%run(p%model, qf, vf, real(h, wp), int(nstep), st, msg)
         stat = int(st, c_int)
     end function fsym_c_step
 

@@ -4,11 +4,10 @@ module fsym_integrator
     use fsym_kinds, only: wp, ik
     use fsym_status
     use fsym_scheme, only: scheme_t, fsym_scheme_custom, fsym_scheme_by_name, fsym_op_name
-    use fsym_force, only: force_model_t, recorder_t, EVAL_FORCE, EVAL_GRADIENT, &
-                          EVAL_EXTRAPOLATED
-    use fsym_stepper, only: stepper_t, stepper_run
-    use fsym_kernel
-    use fsym_kepler, only: kepler_model_t
+    use fsym_force, only: force_model_t, recorder_t
+    use fsym_stepper, only: stepper_t, observer_t
+    use fsym_kernel, only: kernel_state_t, fsym_kernel_layout, fsym_kernel_run, &
+                           fsym_kernel_invalidate
     implicit none
     private
 
@@ -16,10 +15,8 @@ module fsym_integrator
     type, extends(stepper_t), public :: integrator_t
         private
         type(scheme_t) :: sc
-        real(wp), allocatable :: w(:, :, :)
-        integer :: iw(KERNEL_NIW) = 0
-        real(wp) :: rw(KERNEL_NRW) = 0.0_wp
-        integer :: nslot = 0
+        real(wp), allocatable :: w(:, :, :)  ! the kernel's work array (d, n, slots)
+        type(kernel_state_t) :: ks           ! the kernel's state
         logical :: ready = .false.
         logical :: needs_g = .false.        ! the scheme has gradient kicks
     contains
@@ -29,8 +26,8 @@ module fsym_integrator
             !! `init` with the method given by its label
         procedure :: step => integrator_step
             !! one step of size h; on failure q, v unchanged
-        procedure :: run => integrator_run
-            !! nsteps steps of size h; stops at the first failing step
+        procedure :: run_steps => integrator_run
+            !! `run`: nsteps steps of size h in one kernel call; stops at the first failure
         procedure :: destroy => integrator_destroy      !! release the workspace
         procedure :: scheme => integrator_scheme        !! the scheme in use
         procedure :: reset_cache => integrator_reset_cache  !! forget the cached end-of-step force
@@ -55,8 +52,8 @@ contains
         logical, intent(in), optional :: compensated          !! compensated summation
         real(wp), intent(in), optional :: t0                  !! start time (default 0)
         type(scheme_t) :: s
-        integer :: st, iw(KERNEL_NIW), nslot
-        real(wp) :: rw(KERNEL_NRW)
+        type(kernel_state_t) :: ks
+        integer :: st
         character(len=256) :: msg
         logical :: comp
 
@@ -84,14 +81,12 @@ contains
         end if
         comp = .false.
         if (present(compensated)) comp = compensated
-        call fsym_kernel_layout(s%op, comp, iw, rw, nslot)
+        call fsym_kernel_layout(s%op, comp, d, n, ks)
 
         self%sc = s
-        self%iw = iw
-        self%rw = rw
-        self%nslot = nslot
+        self%ks = ks
         if (allocated(self%w)) deallocate (self%w)
-        allocate (self%w(d, n, nslot))
+        allocate (self%w(d, n, ks%nslot))
         self%w = 0.0_wp
         call self%describe_stepper(s%name, d, n, .true., s%forward, s%symplectic, s%nforce, &
                                    s%ngrad, 0.0_wp)
@@ -133,75 +128,16 @@ contains
         integer, intent(out), optional :: stat                !! status code
         character(len=*), intent(inout), optional :: errmsg   !! message on error
         class(recorder_t), intent(inout), optional :: recorder  !! force-point recorder
-        integer :: d, n, st, req, mst, ia, ig, iqe, iae
-        integer(ik) :: nf, ng, istep
-        logical :: ok, taken
-
-        if (.not. self%ready) then
-            call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'integrator_t%step before init', stat, &
-                             errmsg)
-            return
-        end if
-        call self%dims(d, n)
-        call check_shapes(d, n, q, v, ok, stat, errmsg)
-        if (.not. ok) return
-        call kepler_steps(self, model, d, n, q, v, h, 1_ik, present(recorder), taken, stat, &
-                          errmsg)
-        if (taken) return
-        if (self%needs_g) then
-            if (.not. model%has_gradient()) then
-                call fsym_report(FSYM_ERR_NO_GRADIENT, 'method '//self%sc%name// &
-                                 ': this model has no gradient term', stat, errmsg)
-                return
-            end if
-        end if
-        call fsym_kernel_begin(d, n, q, v, h, self%w, self%nslot, self%iw, self%rw, st)
-        if (st /= FSYM_SUCCESS) then
-            call report_step_failure(self, st, .true., stat, errmsg); return
-        end if
-        ia = fsym_kernel_slot(self%iw, SLOT_A); ig = fsym_kernel_slot(self%iw, SLOT_G)
-        iqe = fsym_kernel_slot(self%iw, SLOT_QE); iae = fsym_kernel_slot(self%iw, SLOT_AE)
-        call self%counters(nf, ng, 0)
-        istep = self%steps() + 1
-        do
-            call fsym_kernel_resume(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, d, n, q, v, &
-                                    self%w, self%nslot, self%iw, self%rw, nf, ng, req, st)
-            if (req == REQ_DONE .or. req == REQ_ERROR) exit
-            mst = 0
-            select case (req)
-            case (REQ_FORCE)
-                call model%acceleration(q, self%w(:, :, ia), mst)
-                if (present(recorder)) call recorder%record(istep, self%iw(KW_PC), EVAL_FORCE, q)
-            case (REQ_GRADIENT)
-                call model%gradient(q, self%w(:, :, ia), self%w(:, :, ig), mst)
-                if (present(recorder)) call recorder%record(istep, self%iw(KW_PC), EVAL_GRADIENT, q)
-            case (REQ_FORCE_SHIFTED)
-                call model%acceleration(self%w(:, :, iqe), self%w(:, :, iae), mst)
-                if (present(recorder)) call recorder%record(istep, self%iw(KW_PC), &
-                                                            EVAL_EXTRAPOLATED, self%w(:, :, iqe))
-            case default
-                ! nothing else can occur here
-            end select
-            if (mst /= 0) then
-                call fsym_kernel_abort(d, n, q, v, self%w, self%nslot, self%iw)
-                st = FSYM_ERR_MODEL
-                exit
-            end if
-        end do
-        call self%counters(nf, ng, 1)
-        if (st /= FSYM_SUCCESS) then
-            call report_step_failure(self, st, .false., stat, errmsg); return
-        end if
-        call self%count_step(h)
-        if (present(stat)) stat = FSYM_SUCCESS
-
+        integer(ik) :: ndone
+        call advance(self, model, q, v, h, 1_ik, ndone, stat, errmsg, recorder)
     end subroutine integrator_step
 
     !> `nsteps` steps of size h; stops at the first failing step, leaving the state of the
     !> last good step (check `stat`; `steps()` tells how far it got). Bitwise the same as
-    !> `nsteps` calls of `step`; for the library's `kepler_model_t` the kernel takes all the
-    !> steps in one call (see `kepler_steps`).
-    subroutine integrator_run(self, model, q, v, h, nsteps, stat, errmsg, recorder)
+    !> `nsteps` calls of `step`: the kernel takes the steps in one call (per `every` steps
+    !> when an observer looks at the state; it may stop the run).
+    subroutine integrator_run(self, model, q, v, h, nsteps, stat, errmsg, recorder, observer, &
+                              every)
         class(integrator_t), intent(inout) :: self            !! the integrator
         class(force_model_t), intent(inout) :: model          !! force model
         real(wp), intent(inout), contiguous :: q(:, :)        !! positions (d, n)
@@ -211,61 +147,78 @@ contains
         integer, intent(out), optional :: stat                !! status code
         character(len=*), intent(inout), optional :: errmsg   !! message on error
         class(recorder_t), intent(inout), optional :: recorder  !! force-point recorder
-        integer :: d, n
-        logical :: ok, taken
-        if (self%ready) then
-            call self%dims(d, n)
-            call check_shapes(d, n, q, v, ok, stat, errmsg)
-            if (.not. ok) return
-            call kepler_steps(self, model, d, n, q, v, h, nsteps, present(recorder), taken, &
-                              stat, errmsg)
-            if (taken) return
+        class(observer_t), intent(inout), optional :: observer  !! called every `every` steps
+        integer, intent(in), optional :: every                !! observer interval (default 1)
+        integer(ik) :: left, chunk, ndone
+        integer :: st
+        logical :: stop
+        call self%note_stop(.false.)
+        if (.not. present(observer)) then
+            call advance(self, model, q, v, h, nsteps, ndone, stat, errmsg, recorder)
+            return
         end if
-        call stepper_run(self, model, q, v, h, nsteps, stat, errmsg, recorder)
+        chunk = 1
+        if (present(every)) chunk = max(1, every)
+        left = nsteps
+        if (present(stat)) stat = FSYM_SUCCESS
+        do while (left > 0)
+            call advance(self, model, q, v, h, min(chunk, left), ndone, st, errmsg, recorder)
+            if (present(stat)) stat = st
+            if (st /= FSYM_SUCCESS .or. ndone < min(chunk, left)) return
+            left = left - ndone
+            if (ndone == chunk) then
+                stop = .false.
+                call observer%observe(q, v, self%time(), self%steps(), stop)
+                call self%note_stop(stop)
+                if (stop) return
+            end if
+        end do
     end subroutine integrator_run
 
-    !> The specialised path for the library's Kepler model (exactly that type, not its
-    !> extensions, which may override the force), without recorder or compensation: the
-    !> kernel takes all `nsteps` steps in one call with the force called directly (no
-    !> reverse communication, no dynamic dispatch per force, no return between steps); the
-    !> same stage arithmetic as the general path, bitwise the same result. That model has
-    !> the gradient term, so no check for it is needed. `taken` is false (and nothing done)
-    !> for any other model, with a recorder, or with compensation.
-    subroutine kepler_steps(self, model, d, n, q, v, h, nsteps, recorded, taken, stat, errmsg)
+    !> Up to `nsteps` steps in one kernel call, with the checks a call makes, the clock and
+    !> the counters; a failure is reported with the method, step and stage.
+    subroutine advance(self, model, q, v, h, nsteps, ndone, stat, errmsg, recorder)
         class(integrator_t), intent(inout) :: self
-        class(force_model_t), intent(in) :: model
-        integer, intent(in) :: d, n
-        real(wp), intent(inout) :: q(d, n), v(d, n)
+        class(force_model_t), intent(inout) :: model
+        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)
         real(wp), intent(in) :: h
         integer(ik), intent(in) :: nsteps
-        logical, intent(in) :: recorded
-        logical, intent(out) :: taken
+        integer(ik), intent(out) :: ndone
         integer, intent(out), optional :: stat
         character(len=*), intent(inout), optional :: errmsg
-        integer(ik) :: nf, ng, ndone
+        class(recorder_t), intent(inout), optional :: recorder
         integer :: st
-        real(wp) :: mu
-        taken = .false.
-        if (recorded .or. self%iw(KW_COMP) /= 0) return
-        select type (model)
-        type is (kepler_model_t)
-            mu = model%mu
-        class default
+        integer(ik) :: step0, nf, ng
+        ndone = 0
+        if (.not. self%ready) then
+            call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'integrator_t%step before init', stat, &
+                             errmsg)
             return
-        end select
-        taken = .true.
-        call self%counters(nf, ng, 0)
-        call fsym_kernel_run_kepler(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, d, n, q, v, &
-                                    h, mu, nsteps, self%w, self%nslot, self%iw, self%rw, &
-                                    nf, ng, ndone, st)
+        end if
+        if (size(q, 1) /= self%ks%d .or. size(q, 2) /= self%ks%n .or. &
+            size(v, 1) /= self%ks%d .or. size(v, 2) /= self%ks%n) then
+            call fsym_report(FSYM_ERR_SHAPE, shape_text(self%ks%d, self%ks%n, q, v), stat, &
+                             errmsg)
+            return
+        end if
+        if (self%needs_g) then
+            if (.not. model%has_gradient()) then
+                call fsym_report(FSYM_ERR_NO_GRADIENT, 'method '//self%sc%name// &
+                                 ': this model has no gradient term', stat, errmsg)
+                return
+            end if
+        end if
+        step0 = self%steps()
+        call fsym_kernel_run(self%sc%op, self%sc%c, self%sc%u, model, self%ks, q, v, self%w, h, &
+                             nsteps, ndone, st, recorder, step0)
+        nf = self%ks%nf; ng = self%ks%ng
         call self%counters(nf, ng, 1)
         call self%count_step(h, ndone)
         if (st /= FSYM_SUCCESS) then
-            call report_step_failure(self, st, self%iw(KW_PC) == 0, stat, errmsg)
-            return
+            call report_step_failure(self, st, self%ks%pc == 0, stat, errmsg); return
         end if
         if (present(stat)) stat = FSYM_SUCCESS
-    end subroutine kepler_steps
+    end subroutine advance
 
     !> Report a failed step (rejected on entry when `at_begin`).
     subroutine report_step_failure(self, st, at_begin, stat, errmsg)
@@ -280,8 +233,8 @@ contains
         else
             call fsym_report(st, 'method '//self%sc%name//', step '// &
                              fsym_int_text(self%steps() + 1)//', stage '// &
-                             fsym_int_text(self%iw(KW_PC))//' ('// &
-                             fsym_op_name(self%sc%op(min(self%iw(KW_PC), self%sc%nop)))// &
+                             fsym_int_text(self%ks%pc)//' ('// &
+                             fsym_op_name(self%sc%op(min(self%ks%pc, self%sc%nop)))// &
                              '); state restored', stat, errmsg)
         end if
     end subroutine report_step_failure
@@ -304,7 +257,7 @@ contains
     !> only after changing the force model's own parameters between steps.
     subroutine integrator_reset_cache(self)
         class(integrator_t), intent(inout) :: self  !! the integrator
-        call fsym_kernel_invalidate(self%iw)
+        call fsym_kernel_invalidate(self%ks)
     end subroutine integrator_reset_cache
 
     !> Reals of workspace held (d * n * slots).
@@ -315,17 +268,6 @@ contains
         if (allocated(self%w)) m = size(self%w, kind=ik)
         integrator_work_size = m
     end function integrator_work_size
-
-    !> `ok` when q and v have the shape (d, n); else FSYM_ERR_SHAPE is reported.
-    subroutine check_shapes(d, n, q, v, ok, stat, errmsg)
-        integer, intent(in) :: d, n
-        real(wp), intent(in) :: q(:, :), v(:, :)
-        logical, intent(out) :: ok
-        integer, intent(out), optional :: stat
-        character(len=*), intent(inout), optional :: errmsg
-        ok = size(q, 1) == d .and. size(q, 2) == n .and. size(v, 1) == d .and. size(v, 2) == n
-        if (.not. ok) call fsym_report(FSYM_ERR_SHAPE, shape_text(d, n, q, v), stat, errmsg)
-    end subroutine check_shapes
 
     function shape_text(d, n, q, v) result(s)
         integer, intent(in) :: d, n

@@ -224,7 +224,7 @@ contains
     end subroutine kepler_model_gradient
 
     !> Accelerations -mu q_j/|q_j|^3 of n independent bodies on explicit arrays: the one
-    !> Kepler force of the library (the model and the kernel's Kepler path call it).
+    !> Kepler force of the library (the model calls it).
     pure subroutine kepler_field(d, n, mu, q, a)
         integer, intent(in) :: d, n               !! dimensions, bodies
         real(wp), intent(in) :: mu                !! G M

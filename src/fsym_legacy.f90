@@ -1,18 +1,11 @@
 !> F77-callable face of forward-symplectic: external (non-module) subroutines with
 !> explicit-shape arrays, an integer method id, caller-provided work arrays and an integer
-!> status. They drive the one splitting kernel (`fsym_kernel`), so they give the same numbers
+!> status. They run the one splitting kernel (`fsym_kernel`), so they give the same numbers
 !> as `integrator_t`, bit for bit. Nothing here stops, allocates or does I/O.
 !>
 !> Work arrays: `RW(LRW)` (double precision) and `IW(LIW)` (integer) hold the scheme table,
-!> the kernel state and the kernel's slots; `FSYMWK` gives their lengths, `FSYMIN` fills them.
-!> The caller must not change them between calls.
-!>
-!>     IW(1)  magic (initialised)        RW(1:KERNEL_NRW)   kernel real state
-!>     IW(2)  ND   IW(3) N               RW(KERNEL_NRW+1)   force evaluations (counter)
-!>     IW(4)  NOP  IW(5) NSLOT           RW(KERNEL_NRW+2)   gradient evaluations (counter)
-!>     IW(6)  method id                  then C(NOP), U(NOP), then the slots W(ND,N,NSLOT)
-!>     IW(7)  steps completed by the last FSYMST call
-!>     IW(8:) kernel integer state (KERNEL_NIW), then the op codes (NOP)
+!> the kernel state and the kernel's slots (layout in `fsym_legacy_work`); `FSYMWK` gives
+!> their lengths, `FSYMIN` fills them. The caller must not change them between calls.
 !>
 !> Status codes (INFO) are those of `fsym_status` (0 = success); `FSYMMS` gives the text.
 !>
@@ -59,11 +52,11 @@ end subroutine FSYMWK
 !> Set up the work arrays for method METH on X(ND,N). A work array shorter than FSYMWK's
 !> answer is rejected with INFO = 10 (FSYM_ERR_WORK_SIZE) and nothing is written.
 subroutine FSYMIN(METH, ND, N, RW, LRW, IW, LIW, INFO)
-    use fsym_legacy_work, only: legacy_sizes, LEGACY_MAGIC
+    use fsym_legacy_work, only: legacy_sizes, legacy_store, LEGACY_MAGIC, LEGACY_KO, LEGACY_KC
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_WORK_SIZE
     use fsym_kinds, only: wp
-    use fsym_scheme, only: scheme_t, fsym_scheme_by_name, fsym_catalogue
-    use fsym_kernel, only: fsym_kernel_layout, KERNEL_NIW, KERNEL_NRW
+    use fsym_scheme, only: scheme_t, fsym_scheme_by_name, fsym_catalogue, FSYM_NAME_LEN
+    use fsym_kernel, only: kernel_state_t, fsym_kernel_layout
     implicit none
     integer, intent(in) :: METH          !! method id (FSYMID)
     integer, intent(in) :: ND, N         !! dimensions, bodies
@@ -72,8 +65,9 @@ subroutine FSYMIN(METH, ND, N, RW, LRW, IW, LIW, INFO)
     integer, intent(inout) :: IW(LIW)    !! integer work array
     integer, intent(out) :: INFO         !! status
     type(scheme_t) :: s
-    character(len=24), allocatable :: cat(:)
-    integer :: need_r, need_i, nslot, ko, kc
+    type(kernel_state_t) :: ks
+    character(len=FSYM_NAME_LEN), allocatable :: cat(:)
+    integer :: need_r, need_i
     call legacy_sizes(METH, ND, N, need_r, need_i, INFO)
     if (INFO /= FSYM_SUCCESS) return
     if (LRW < need_r .or. LIW < need_i) then
@@ -84,14 +78,13 @@ subroutine FSYMIN(METH, ND, N, RW, LRW, IW, LIW, INFO)
     if (INFO /= FSYM_SUCCESS) return
     IW(1:need_i) = 0
     RW(1:need_r) = 0.0_wp
-    call fsym_kernel_layout(s%op, .false., IW(8:7 + KERNEL_NIW), RW(1:KERNEL_NRW), nslot)
+    call fsym_kernel_layout(s%op, .false., ND, N, ks)
+    call legacy_store(ks, IW(8:LEGACY_KO - 1), RW(1:4))
     IW(1) = LEGACY_MAGIC
-    IW(2) = ND; IW(3) = N; IW(4) = s%nop; IW(5) = nslot; IW(6) = METH; IW(7) = 0
-    ko = 8 + KERNEL_NIW
-    IW(ko:ko + s%nop - 1) = s%op
-    kc = KERNEL_NRW + 3
-    RW(kc:kc + s%nop - 1) = s%c
-    RW(kc + s%nop:kc + 2 * s%nop - 1) = s%u
+    IW(2) = ND; IW(3) = N; IW(4) = s%nop; IW(5) = ks%nslot; IW(6) = METH; IW(7) = 0
+    IW(LEGACY_KO:LEGACY_KO + s%nop - 1) = s%op
+    RW(LEGACY_KC:LEGACY_KC + s%nop - 1) = s%c
+    RW(LEGACY_KC + s%nop:LEGACY_KC + 2 * s%nop - 1) = s%u
     INFO = FSYM_SUCCESS
 end subroutine FSYMIN
 
@@ -101,12 +94,11 @@ end subroutine FSYMIN
 !> signature may be passed for the other methods; it is not called). On failure (INFO /= 0)
 !> X and V hold the state after the last completed step; IW(7) tells how many were done.
 subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
-    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_NOT_INITIALIZED
+    use fsym_status, only: FSYM_ERR_NOT_INITIALIZED, FSYM_ERR_BAD_REQUEST
     use fsym_kinds, only: wp, ik
-    use fsym_kernel, only: fsym_kernel_begin, fsym_kernel_resume, fsym_kernel_slot, &
-                           KERNEL_NIW, KERNEL_NRW, SLOT_A, SLOT_G, SLOT_QE, SLOT_AE, &
-                           REQ_FORCE, REQ_GRADIENT, REQ_FORCE_SHIFTED
-    use fsym_legacy_work, only: legacy_ok
+    use fsym_kernel, only: kernel_state_t, fsym_kernel_run
+    use fsym_legacy_work, only: legacy_ok, legacy_load, legacy_store, legacy_model_t, &
+                                LEGACY_KO, LEGACY_KC
     use fsym_legacy_api, only: fsym_legacy_accel, fsym_legacy_grad
     implicit none
     integer, intent(in) :: ND, N                !! dimensions, bodies
@@ -120,46 +112,29 @@ subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
     integer, intent(out) :: INFO                !! status
     procedure(fsym_legacy_accel) :: ACCEL       !! ACCEL(ND, N, X, A): accelerations at X
     procedure(fsym_legacy_grad) :: GRAD         !! GRAD(ND, N, X, A, G): gradient term at X
-    integer :: nop, nslot, ko, kc, kw, m, istep, req, ia, ig, iqe, iae
-    integer(ik) :: nf, ng
-    logical :: ok
-    ok = legacy_ok(ND, N, LRW, LIW, IW)
-    if (.not. ok) then
+    type(kernel_state_t) :: ks
+    type(legacy_model_t) :: model
+    integer :: nop, kw
+    integer(ik) :: ndone
+    if (.not. legacy_ok(ND, N, LRW, LIW, IW)) then
         ! IW may be shorter than 7 here: write nothing into it
         INFO = FSYM_ERR_NOT_INITIALIZED
         return
     end if
     IW(7) = 0
-    nop = IW(4); nslot = IW(5)
-    ko = 8 + KERNEL_NIW; kc = KERNEL_NRW + 3; kw = kc + 2 * nop
-    m = ND * N
-    ia = kw + (fsym_kernel_slot(IW(8:), SLOT_A) - 1) * m
-    ig = kw + (fsym_kernel_slot(IW(8:), SLOT_G) - 1) * m
-    iqe = kw + (fsym_kernel_slot(IW(8:), SLOT_QE) - 1) * m
-    iae = kw + (fsym_kernel_slot(IW(8:), SLOT_AE) - 1) * m
-    nf = int(RW(KERNEL_NRW + 1), ik); ng = int(RW(KERNEL_NRW + 2), ik)
-    INFO = FSYM_SUCCESS
-    do istep = 1, NSTEP
-        call fsym_kernel_begin(ND, N, X, V, H, RW(kw), nslot, IW(8), RW(1), INFO)
-        if (INFO /= FSYM_SUCCESS) exit
-        do
-            call fsym_kernel_resume(nop, IW(ko), RW(kc), RW(kc + nop), ND, N, X, V, RW(kw), &
-                                    nslot, IW(8), RW(1), nf, ng, req, INFO)
-            select case (req)
-            case (REQ_FORCE)
-                call ACCEL(ND, N, X, RW(ia))
-            case (REQ_GRADIENT)
-                call GRAD(ND, N, X, RW(ia), RW(ig))
-            case (REQ_FORCE_SHIFTED)
-                call ACCEL(ND, N, RW(iqe), RW(iae))
-            case default
-                exit
-            end select
-        end do
-        if (INFO /= FSYM_SUCCESS) exit
-        IW(7) = istep
-    end do
-    RW(KERNEL_NRW + 1) = real(nf, wp); RW(KERNEL_NRW + 2) = real(ng, wp)
+    call legacy_load(IW(8:LEGACY_KO - 1), RW(1:4), ks)
+    if (ks%active) then
+        INFO = FSYM_ERR_BAD_REQUEST; return     ! a reverse-communication step is open
+    end if
+    nop = IW(4)
+    kw = LEGACY_KC + 2 * nop
+    model%accel => ACCEL
+    model%grad => GRAD
+    call fsym_kernel_run(IW(LEGACY_KO:LEGACY_KO + nop - 1), RW(LEGACY_KC:LEGACY_KC + nop - 1), &
+                         RW(LEGACY_KC + nop:kw - 1), model, ks, X, V, RW(kw), H, &
+                         int(NSTEP, ik), ndone, INFO)
+    IW(7) = int(ndone)
+    call legacy_store(ks, IW(8:LEGACY_KO - 1), RW(1:4))
 end subroutine FSYMST
 
 !> One step of size H by reverse communication: the caller keeps its own force loop.
@@ -171,15 +146,15 @@ end subroutine FSYMST
 !>   IREQ = 3  store the accelerations at the positions RW(IPNT(1)...) in RW(IPNT(2)...);
 !>   IREQ = -1 failed, INFO says why, X and V are restored to the start of the step.
 !> Then call again with IREQ unchanged. Call with IREQ = -1 to abandon a step in progress
-!> (X, V restored). Do not change X or V while a step is in progress.
+!> (X, V restored). Do not change X or V while a step is in progress. It runs the kernel of
+!> FSYMST stage by stage: the kernel suspends where FSYMST would call ACCEL or GRAD.
 subroutine FSYMRC(ND, N, X, V, H, RW, LRW, IW, LIW, IREQ, IPNT, INFO)
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_NOT_INITIALIZED, FSYM_ERR_BAD_REQUEST
     use fsym_kinds, only: wp, ik
-    use fsym_kernel, only: fsym_kernel_begin, fsym_kernel_resume, fsym_kernel_slot, &
-                           fsym_kernel_abort, KERNEL_NIW, KERNEL_NRW, KW_ACTIVE, KW_REQ, &
-                           SLOT_A, SLOT_G, SLOT_QE, SLOT_AE, REQ_DONE, REQ_ERROR, REQ_FORCE, &
-                           REQ_GRADIENT, REQ_FORCE_SHIFTED
-    use fsym_legacy_work, only: legacy_ok
+    use fsym_kernel, only: kernel_state_t, fsym_kernel_run, fsym_kernel_abort, &
+                           KERNEL_SUSPEND, REQ_FORCE, REQ_GRADIENT, REQ_FORCE_SHIFTED
+    use fsym_legacy_work, only: legacy_ok, legacy_load, legacy_store, suspend_model_t, &
+                                LEGACY_KO, LEGACY_KC
     implicit none
     integer, intent(in) :: ND, N                !! dimensions, bodies
     real(wp), intent(inout) :: X(ND, N)         !! positions
@@ -191,62 +166,65 @@ subroutine FSYMRC(ND, N, X, V, H, RW, LRW, IW, LIW, IREQ, IPNT, INFO)
     integer, intent(inout) :: IREQ              !! request (see above)
     integer, intent(out) :: IPNT(3)             !! positions in RW of the request's arrays
     integer, intent(out) :: INFO                !! status
-    integer :: nop, nslot, ko, kc, kw, m, req
-    integer(ik) :: nf, ng
-    logical :: ok
+    type(kernel_state_t) :: ks
+    type(suspend_model_t) :: model
+    integer :: nop, kw, m
+    integer(ik) :: ndone
     IPNT = 0
-    ok = legacy_ok(ND, N, LRW, LIW, IW)
-    if (.not. ok) then
-        IREQ = REQ_ERROR; INFO = FSYM_ERR_NOT_INITIALIZED; return
+    if (.not. legacy_ok(ND, N, LRW, LIW, IW)) then
+        IREQ = -1; INFO = FSYM_ERR_NOT_INITIALIZED; return
     end if
-    nop = IW(4); nslot = IW(5)
-    ko = 8 + KERNEL_NIW; kc = KERNEL_NRW + 3; kw = kc + 2 * nop
+    nop = IW(4)
+    kw = LEGACY_KC + 2 * nop
     m = ND * N
-    if (IREQ == REQ_ERROR) then
-        call fsym_kernel_abort(ND, N, X, V, RW(kw), nslot, IW(8))
-        IREQ = REQ_DONE; INFO = FSYM_SUCCESS; return
+    call legacy_load(IW(8:LEGACY_KO - 1), RW(1:4), ks)
+    if (IREQ == -1) then
+        call fsym_kernel_abort(ks, X, V, RW(kw))
+        call legacy_store(ks, IW(8:LEGACY_KO - 1), RW(1:4))
+        IREQ = 0; INFO = FSYM_SUCCESS; return
     end if
-    if (IREQ == REQ_DONE) then
-        if (IW(7 + KW_ACTIVE) /= 0) then
-            IREQ = REQ_ERROR; INFO = FSYM_ERR_BAD_REQUEST; return
-        end if
-        call fsym_kernel_begin(ND, N, X, V, H, RW(kw), nslot, IW(8), RW(1), INFO)
-        if (INFO /= FSYM_SUCCESS) then
-            IREQ = REQ_ERROR; return
-        end if
-    else if (IREQ /= IW(7 + KW_REQ) .or. IW(7 + KW_ACTIVE) == 0) then
-        IREQ = REQ_ERROR; INFO = FSYM_ERR_BAD_REQUEST; return
+    if (ks%active .neqv. IREQ /= 0) then
+        IREQ = -1; INFO = FSYM_ERR_BAD_REQUEST; return
     end if
-    nf = int(RW(KERNEL_NRW + 1), ik); ng = int(RW(KERNEL_NRW + 2), ik)
-    call fsym_kernel_resume(nop, IW(ko), RW(kc), RW(kc + nop), ND, N, X, V, RW(kw), nslot, &
-                            IW(8), RW(1), nf, ng, req, INFO)
-    RW(KERNEL_NRW + 1) = real(nf, wp); RW(KERNEL_NRW + 2) = real(ng, wp)
-    IREQ = req
-    select case (req)
-    case (REQ_FORCE)
-        IPNT(2) = kw + (fsym_kernel_slot(IW(8:), SLOT_A) - 1) * m
-    case (REQ_GRADIENT)
-        IPNT(2) = kw + (fsym_kernel_slot(IW(8:), SLOT_G) - 1) * m
-        IPNT(3) = kw + (fsym_kernel_slot(IW(8:), SLOT_A) - 1) * m
-    case (REQ_FORCE_SHIFTED)
-        IPNT(1) = kw + (fsym_kernel_slot(IW(8:), SLOT_QE) - 1) * m
-        IPNT(2) = kw + (fsym_kernel_slot(IW(8:), SLOT_AE) - 1) * m
-    case default
-        continue      ! REQ_DONE or REQ_ERROR: nothing to point at
-    end select
+    if (ks%active .and. IREQ /= ks%req) then
+        IREQ = -1; INFO = FSYM_ERR_BAD_REQUEST; return
+    end if
+    call fsym_kernel_run(IW(LEGACY_KO:LEGACY_KO + nop - 1), RW(LEGACY_KC:LEGACY_KC + nop - 1), &
+                         RW(LEGACY_KC + nop:kw - 1), model, ks, X, V, RW(kw), H, 1_ik, &
+                         ndone, INFO)
+    call legacy_store(ks, IW(8:LEGACY_KO - 1), RW(1:4))
+    if (INFO == KERNEL_SUSPEND) then
+        INFO = FSYM_SUCCESS
+        IREQ = ks%req
+        select case (ks%req)
+        case (REQ_FORCE)
+            IPNT(2) = kw + (ks%ia - 1) * m
+        case (REQ_GRADIENT)
+            IPNT(2) = kw + (ks%ig - 1) * m
+            IPNT(3) = kw + (ks%ia - 1) * m
+        case (REQ_FORCE_SHIFTED)
+            IPNT(1) = kw + (ks%iqe - 1) * m
+            IPNT(2) = kw + (ks%iae - 1) * m
+        case default
+            continue      ! no other request exists
+        end select
+    else if (INFO == FSYM_SUCCESS) then
+        IREQ = 0
+    else
+        IREQ = -1
+    end if
 end subroutine FSYMRC
 
 !> Force and gradient evaluations supplied since FSYMIN (FSYMST and FSYMRC together).
 subroutine FSYMNF(RW, LRW, NF, NG)
     use fsym_kinds, only: wp
-    use fsym_kernel, only: KERNEL_NRW
     implicit none
     integer, intent(in) :: LRW          !! length of RW
     real(wp), intent(in) :: RW(LRW)     !! work array set up by FSYMIN
     integer, intent(out) :: NF, NG      !! force and gradient evaluations
     NF = 0; NG = 0
-    if (LRW < KERNEL_NRW + 2) return
-    NF = nint(RW(KERNEL_NRW + 1)); NG = nint(RW(KERNEL_NRW + 2))
+    if (LRW < 4) return
+    NF = nint(RW(3)); NG = nint(RW(4))
 end subroutine FSYMNF
 
 !> Text of a status code INFO, blank-padded or cut to the length of MSG.

@@ -10,6 +10,29 @@ module fsym_stepper
 
     public :: stepper_run
 
+    !> Receives the state every `every` steps of a `run` (optional argument); it may stop
+    !> the run. User data travels by extending this type.
+    type, abstract, public :: observer_t
+    contains
+        procedure(observe_iface), deferred :: observe   !! look at the state; may stop the run
+    end type observer_t
+
+    !> Interface of `observer_t%observe`.
+    abstract interface
+        subroutine observe_iface(self, q, v, t, step, stop)
+            !! Called after step number `step` (counted since `init`) at time t. Set `stop`
+            !! to .true. to end the run there (it then returns success).
+            import :: observer_t, wp, ik
+            implicit none
+            class(observer_t), intent(inout) :: self          !! the observer
+            real(wp), intent(in), contiguous :: q(:, :)       !! positions (d, n)
+            real(wp), intent(in), contiguous :: v(:, :)       !! velocities (d, n)
+            real(wp), intent(in) :: t                         !! time
+            integer(ik), intent(in) :: step                   !! steps completed since init
+            logical, intent(inout) :: stop                    !! .false. on entry
+        end subroutine observe_iface
+    end interface
+
     !> A time stepper for q' = v, v' = a(q) on arrays q(d,n), v(d,n).
     type, abstract, public :: stepper_t
         private
@@ -21,9 +44,15 @@ module fsym_stepper
         integer(ik) :: k_since = 0           ! steps since the step size last changed
         real(wp) :: t_base = 0.0_wp          ! time when the step size last changed
         real(wp) :: h_now = 0.0_wp           ! current step size
+        logical :: stopped = .false.         ! the last run was stopped by its observer
     contains
         procedure(step_iface), deferred :: step         !! advance (q, v) by one step h
-        procedure :: run => stepper_run                 !! take nsteps steps
+        procedure :: run_steps => stepper_run           !! `run` with an int64 count
+        procedure, non_overridable :: run_steps_int => stepper_run_int
+            !! `run` with a default-integer count
+        generic :: run => run_steps, run_steps_int      !! take nsteps steps
+        procedure, non_overridable :: run_to => stepper_run_to
+            !! steps of h up to a final time, the last one shortened to land on it
         procedure :: time => stepper_time               !! current time
         procedure :: set_time => stepper_set_time       !! set the clock
         procedure :: steps => stepper_steps             !! steps completed since init
@@ -42,6 +71,8 @@ module fsym_stepper
         procedure :: count_step                         !! for extensions: one step completed
         procedure :: counters
             !! for extensions: read or store the counters
+        procedure :: note_stop
+            !! for extensions: whether the observer stopped the run
     end type stepper_t
 
     !> Interface of `stepper_t%step`.
@@ -65,10 +96,11 @@ module fsym_stepper
 contains
 
     !> Take `nsteps` steps of size h; stops at the first failing step, leaving the state of the
-    !> last good step (check `stat`; `steps()` tells how far it got). The default `run`: one
-    !> `step` after the other (public so that an extension overriding `run` can fall back
-    !> to it).
-    subroutine stepper_run(self, model, q, v, h, nsteps, stat, errmsg, recorder)
+    !> last good step (check `stat`; `steps()` tells how far it got). With `observer`, its
+    !> `observe` is called after every `every` (default 1) steps of this call; it may stop
+    !> the run. The default `run`: one `step` after the other (public so that an extension
+    !> overriding `run_steps` can fall back to it).
+    subroutine stepper_run(self, model, q, v, h, nsteps, stat, errmsg, recorder, observer, every)
         class(stepper_t), intent(inout) :: self               !! the stepper
         class(force_model_t), intent(inout) :: model          !! force model
         real(wp), intent(inout), contiguous :: q(:, :)        !! positions (d, n)
@@ -78,16 +110,110 @@ contains
         integer, intent(out), optional :: stat                !! status code
         character(len=*), intent(inout), optional :: errmsg   !! message on error
         class(recorder_t), intent(inout), optional :: recorder  !! force-point recorder
-        integer(ik) :: k
+        class(observer_t), intent(inout), optional :: observer  !! called every `every` steps
+        integer, intent(in), optional :: every                !! observer interval (default 1)
+        integer(ik) :: k, ke
         integer :: st
+        logical :: stop
         character(len=512) :: msg
         st = FSYM_SUCCESS
+        ke = 1
+        if (present(every)) ke = max(1, every)
+        self%stopped = .false.
         do k = 1, nsteps
             call self%step(model, q, v, h, st, msg, recorder)
             if (st /= FSYM_SUCCESS) exit
+            if (present(observer) .and. mod(k, ke) == 0) then
+                stop = .false.
+                call observer%observe(q, v, self%time(), self%nsteps, stop)
+                self%stopped = stop
+                if (stop) exit
+            end if
         end do
         call fsym_pass(st, msg, stat, errmsg)
     end subroutine stepper_run
+
+    !> `run` with `nsteps` a default integer.
+    subroutine stepper_run_int(self, model, q, v, h, nsteps, stat, errmsg, recorder, observer, &
+                               every)
+        class(stepper_t), intent(inout) :: self               !! the stepper
+        class(force_model_t), intent(inout) :: model          !! force model
+        real(wp), intent(inout), contiguous :: q(:, :)        !! positions (d, n)
+        real(wp), intent(inout), contiguous :: v(:, :)        !! velocities (d, n)
+        real(wp), intent(in) :: h                             !! step
+        integer, intent(in) :: nsteps                         !! number of steps
+        integer, intent(out), optional :: stat                !! status code
+        character(len=*), intent(inout), optional :: errmsg   !! message on error
+        class(recorder_t), intent(inout), optional :: recorder  !! force-point recorder
+        class(observer_t), intent(inout), optional :: observer  !! called every `every` steps
+        integer, intent(in), optional :: every                !! observer interval (default 1)
+        call self%run_steps(model, q, v, h, int(nsteps, ik), stat, errmsg, recorder, observer, &
+                            every)
+    end subroutine stepper_run_int
+
+    !> Integrate from the current time to `t_end` with steps of h (its sign must point from
+    !> `time()` to `t_end`): the whole steps that fit by `run`, then one shorter step that
+    !> lands on t_end (none when the whole steps land within a relative 1e-12 of h). On
+    !> success `time()` is exactly t_end. The observer, if any, sees the whole steps as in
+    !> `run` and then the final state. A failure or an observer's stop ends it early.
+    subroutine stepper_run_to(self, model, q, v, h, t_end, stat, errmsg, recorder, observer, &
+                              every)
+        class(stepper_t), intent(inout) :: self               !! the stepper
+        class(force_model_t), intent(inout) :: model          !! force model
+        real(wp), intent(inout), contiguous :: q(:, :)        !! positions (d, n)
+        real(wp), intent(inout), contiguous :: v(:, :)        !! velocities (d, n)
+        real(wp), intent(in) :: h                             !! step
+        real(wp), intent(in) :: t_end                         !! final time
+        integer, intent(out), optional :: stat                !! status code
+        character(len=*), intent(inout), optional :: errmsg   !! message on error
+        class(recorder_t), intent(inout), optional :: recorder  !! force-point recorder
+        class(observer_t), intent(inout), optional :: observer  !! called every `every` steps
+        integer, intent(in), optional :: every                !! observer interval (default 1)
+        real(wp) :: span, rest, nwhole
+        integer(ik) :: n, before
+        integer :: st
+        logical :: stop
+        character(len=512) :: msg
+        span = t_end - self%time()
+        if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h)) .or. .not. abs(span) <= huge(span)) then
+            call fsym_report(FSYM_ERR_BAD_STEP, 'run_to: h must be finite and non-zero, '// &
+                             't_end finite', stat, errmsg)
+            return
+        end if
+        if (span /= 0.0_wp .and. (span > 0.0_wp .neqv. h > 0.0_wp)) then
+            call fsym_report(FSYM_ERR_BAD_STEP, 'run_to: h points away from t_end', stat, &
+                             errmsg)
+            return
+        end if
+        nwhole = aint(span / h)
+        if (nwhole > real(huge(n), wp)) then
+            call fsym_report(FSYM_ERR_BAD_STEP, 'run_to: too many steps', stat, errmsg)
+            return
+        end if
+        n = int(nwhole, ik)
+        if (abs(span - real(n + 1, wp) * h) <= 1.0e-12_wp * abs(h)) n = n + 1
+        before = self%nsteps
+        st = FSYM_SUCCESS
+        self%stopped = .false.
+        if (n > 0) call self%run_steps(model, q, v, h, n, st, msg, recorder, observer, every)
+        if (st /= FSYM_SUCCESS .or. self%stopped .or. self%nsteps - before < n) then
+            call fsym_pass(st, msg, stat, errmsg); return      ! failed, or stopped
+        end if
+        rest = t_end - self%time()
+        if (abs(rest) > 1.0e-12_wp * abs(h)) then
+            call self%step(model, q, v, rest, st, msg, recorder)
+            if (st /= FSYM_SUCCESS) then
+                call fsym_pass(st, msg, stat, errmsg); return
+            end if
+            if (present(observer)) then
+                stop = .false.
+                call observer%observe(q, v, t_end, self%nsteps, stop)
+            end if
+        end if
+        call self%set_time(t_end)
+        self%h_now = h
+        if (present(stat)) stat = FSYM_SUCCESS
+    end subroutine stepper_run_to
 
     !> Current time t_base + k h.
     pure real(wp) function stepper_time(self)
@@ -214,5 +340,12 @@ contains
             self%nforce = nf; self%ngrad = ng
         end if
     end subroutine counters
+
+    !> For extensions: record whether the observer stopped the run (`run_to` reads it).
+    pure subroutine note_stop(self, stopped)
+        class(stepper_t), intent(inout) :: self  !! the stepper
+        logical, intent(in) :: stopped           !! the observer asked to stop
+        self%stopped = stopped
+    end subroutine note_stop
 
 end module fsym_stepper
