@@ -1,191 +1,570 @@
-!> Hand-written, fully inlined loops of FR, A, C, A6 and BM for one planar Kepler orbit
-!> (mu = 1): scalar state, force written out, no checks, no calls. They are the reference the
-!> overhead benchmark (`fsym-bench`) compares the library's step against. Coefficients are
-!> taken from the library's scheme tables once, before the loop, so the arithmetic (and the
-!> order of operations) is the library's: the end states should agree bitwise.
+!> Hand-written loops of FR, A, C, A6 and BM, the references of the ratio benchmark
+!> (`fsym-bench ratios`, `bash scripts/bench.sh --ratios`):
+!>
+!> - `calls_*`: the stages written out by hand on whole arrays, making the same model calls
+!>   as the library (`model%acceleration`, `model%gradient` through the abstract model, the
+!>   first-same-as-last force kept), with no checks, no saved state, no counters;
+!> - `inl2_*`, `inl3_*`: n independent Kepler orbits (mu = 1) in d = 2 or 3 with the force
+!>   written out: steps outside, bodies inside (that loop vectorises), each body's state in
+!>   registers through all stages of a step.
+!>
+!> Coefficients come from the library's scheme tables, and the force is written with the
+!> operations of `kepler_model_t`, so the end states agree bitwise with the library's.
 module fsym_handloops
     use fsym_kinds, only: wp, ik
+    use fsym_force, only: force_model_t
     implicit none
     private
 
-    public :: hand_fr, hand_a, hand_c, hand_a6, hand_bm, hand_fr_n
+    public :: calls_fr, calls_a, calls_c, calls_a6, calls_bm
+    public :: inl2_fr, inl2_a, inl2_c, inl2_a6, inl2_bm, inl3_fr, inl3_a, inl3_c, inl3_a6, inl3_bm
 
 contains
 
-    !> Forest-Ruth: d k d k d k d (7 stages), 3 forces per step (FSAL does not apply).
-    subroutine hand_fr(c, h, nsteps, q, v)
-        real(wp), intent(in) :: c(7)            !! stage weights of the table
-        real(wp), intent(in) :: h               !! step
-        integer(ik), intent(in) :: nsteps       !! number of steps
-        real(wp), intent(inout) :: q(2), v(2)   !! state
-        real(wp) :: x, y, vx, vy, ax, ay, d1, d3, k2, k4
+    !> FR by hand with the model's own calls on whole arrays (no checks, no copies).
+    subroutine calls_fr(c, h, nsteps, model, q, v, a, g)
+        real(wp), intent(in) :: c(:)   !! stage weights of the table
+        real(wp), intent(in) :: h                           !! step
+        integer(ik), intent(in) :: nsteps                   !! number of steps
+        class(force_model_t), intent(inout) :: model        !! force model
+        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)  !! state
+        real(wp), intent(inout), contiguous :: a(:, :), g(:, :)  !! force, gradient term
+        real(wp) :: d1, d3, k2, k4
         integer(ik) :: i
+        integer :: st
+        st = 0
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h
-        x = q(1); y = q(2); vx = v(1); vy = v(2)
         do i = 1, nsteps
-            x = x + d1 * vx; y = y + d1 * vy
-            call acc(x, y, ax, ay)
-            vx = vx + k2 * ax; vy = vy + k2 * ay
-            x = x + d3 * vx; y = y + d3 * vy
-            call acc(x, y, ax, ay)
-            vx = vx + k4 * ax; vy = vy + k4 * ay
-            x = x + d3 * vx; y = y + d3 * vy
-            call acc(x, y, ax, ay)
-            vx = vx + k2 * ax; vy = vy + k2 * ay
-            x = x + d1 * vx; y = y + d1 * vy
+            q = q + d1 * v
+            call model%acceleration(q, a, st)
+            v = v + k2 * a
+            q = q + d3 * v
+            call model%acceleration(q, a, st)
+            v = v + k4 * a
+            q = q + d3 * v
+            call model%acceleration(q, a, st)
+            v = v + k2 * a
+            q = q + d1 * v
         end do
-        q = [x, y]; v = [vx, vy]
-    end subroutine hand_fr
+    end subroutine calls_fr
 
-    !> Chin's A: k d G d k, FSAL (2 forces and 1 gradient per step).
-    subroutine hand_a(c, u, h, nsteps, q, v)
-        real(wp), intent(in) :: c(5), u(5)      !! stage weights of the table
-        real(wp), intent(in) :: h               !! step
-        integer(ik), intent(in) :: nsteps       !! number of steps
-        real(wp), intent(inout) :: q(2), v(2)   !! state
-        real(wp) :: x, y, vx, vy, ax, ay, gx, gy, k1, d2, k3, g3
+    !> A by hand with the model's own calls on whole arrays (no checks, no copies).
+    subroutine calls_a(c, u, h, nsteps, model, q, v, a, g)
+        real(wp), intent(in) :: c(:), u(:)   !! stage weights of the table
+        real(wp), intent(in) :: h                           !! step
+        integer(ik), intent(in) :: nsteps                   !! number of steps
+        class(force_model_t), intent(inout) :: model        !! force model
+        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)  !! state
+        real(wp), intent(inout), contiguous :: a(:, :), g(:, :)  !! force, gradient term
+        real(wp) :: d2, g3, k1, k3
         integer(ik) :: i
+        integer :: st
+        st = 0
         k1 = c(1) * h; d2 = c(2) * h; k3 = c(3) * h; g3 = u(3) * h**3
-        x = q(1); y = q(2); vx = v(1); vy = v(2)
-        call acc(x, y, ax, ay)
+        call model%acceleration(q, a, st)
         do i = 1, nsteps
-            vx = vx + k1 * ax; vy = vy + k1 * ay
-            x = x + d2 * vx; y = y + d2 * vy
-            call accg(x, y, ax, ay, gx, gy)
-            vx = vx + (k3 * ax + g3 * gx); vy = vy + (k3 * ay + g3 * gy)
-            x = x + d2 * vx; y = y + d2 * vy
-            call acc(x, y, ax, ay)
-            vx = vx + k1 * ax; vy = vy + k1 * ay
+            v = v + k1 * a
+            q = q + d2 * v
+            call model%acceleration(q, a, st)
+            call model%gradient(q, a, g, st)
+            v = v + (k3 * a + g3 * g)
+            q = q + d2 * v
+            call model%acceleration(q, a, st)
+            v = v + k1 * a
         end do
-        q = [x, y]; v = [vx, vy]
-    end subroutine hand_a
+    end subroutine calls_a
 
-    !> Chin's C: d k d G d k d (2 forces and 1 gradient per step).
-    subroutine hand_c(c, u, h, nsteps, q, v)
-        real(wp), intent(in) :: c(7), u(7)      !! stage weights of the table
-        real(wp), intent(in) :: h               !! step
-        integer(ik), intent(in) :: nsteps       !! number of steps
-        real(wp), intent(inout) :: q(2), v(2)   !! state
-        real(wp) :: x, y, vx, vy, ax, ay, gx, gy, d1, k2, d3, k4, g4
+    !> C by hand with the model's own calls on whole arrays (no checks, no copies).
+    subroutine calls_c(c, u, h, nsteps, model, q, v, a, g)
+        real(wp), intent(in) :: c(:), u(:)   !! stage weights of the table
+        real(wp), intent(in) :: h                           !! step
+        integer(ik), intent(in) :: nsteps                   !! number of steps
+        class(force_model_t), intent(inout) :: model        !! force model
+        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)  !! state
+        real(wp), intent(inout), contiguous :: a(:, :), g(:, :)  !! force, gradient term
+        real(wp) :: d1, d3, g4, k2, k4
         integer(ik) :: i
+        integer :: st
+        st = 0
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h; g4 = u(4) * h**3
-        x = q(1); y = q(2); vx = v(1); vy = v(2)
         do i = 1, nsteps
-            x = x + d1 * vx; y = y + d1 * vy
-            call acc(x, y, ax, ay)
-            vx = vx + k2 * ax; vy = vy + k2 * ay
-            x = x + d3 * vx; y = y + d3 * vy
-            call accg(x, y, ax, ay, gx, gy)
-            vx = vx + (k4 * ax + g4 * gx); vy = vy + (k4 * ay + g4 * gy)
-            x = x + d3 * vx; y = y + d3 * vy
-            call acc(x, y, ax, ay)
-            vx = vx + k2 * ax; vy = vy + k2 * ay
-            x = x + d1 * vx; y = y + d1 * vy
+            q = q + d1 * v
+            call model%acceleration(q, a, st)
+            v = v + k2 * a
+            q = q + d3 * v
+            call model%acceleration(q, a, st)
+            call model%gradient(q, a, g, st)
+            v = v + (k4 * a + g4 * g)
+            q = q + d3 * v
+            call model%acceleration(q, a, st)
+            v = v + k2 * a
+            q = q + d1 * v
         end do
-        q = [x, y]; v = [vx, vy]
-    end subroutine hand_c
+    end subroutine calls_c
 
-    !> Chin's A6: G (d k)^4 d G, FSAL (5 forces and 1 gradient per step).
-    subroutine hand_a6(c, u, h, nsteps, q, v)
-        real(wp), intent(in) :: c(11), u(11)    !! stage weights of the table
-        real(wp), intent(in) :: h               !! step
-        integer(ik), intent(in) :: nsteps       !! number of steps
-        real(wp), intent(inout) :: q(2), v(2)   !! state
-        real(wp) :: x, y, vx, vy, ax, ay, gx, gy, k1, g1, d2, k3
+    !> A6 by hand with the model's own calls on whole arrays (no checks, no copies).
+    subroutine calls_a6(c, u, h, nsteps, model, q, v, a, g)
+        real(wp), intent(in) :: c(:), u(:)   !! stage weights of the table
+        real(wp), intent(in) :: h                           !! step
+        integer(ik), intent(in) :: nsteps                   !! number of steps
+        class(force_model_t), intent(inout) :: model        !! force model
+        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)  !! state
+        real(wp), intent(inout), contiguous :: a(:, :), g(:, :)  !! force, gradient term
+        real(wp) :: d2, g1, k1, k3
         integer(ik) :: i
-        integer :: j
+        integer :: st
+        st = 0
         k1 = c(1) * h; g1 = u(1) * h**3; d2 = c(2) * h; k3 = c(3) * h
-        x = q(1); y = q(2); vx = v(1); vy = v(2)
-        call accg(x, y, ax, ay, gx, gy)
+        call model%acceleration(q, a, st)
+        call model%gradient(q, a, g, st)
         do i = 1, nsteps
-            vx = vx + (k1 * ax + g1 * gx); vy = vy + (k1 * ay + g1 * gy)
-            do j = 1, 4
-                x = x + d2 * vx; y = y + d2 * vy
-                call acc(x, y, ax, ay)
-                vx = vx + k3 * ax; vy = vy + k3 * ay
-            end do
-            x = x + d2 * vx; y = y + d2 * vy
-            call accg(x, y, ax, ay, gx, gy)
-            vx = vx + (k1 * ax + g1 * gx); vy = vy + (k1 * ay + g1 * gy)
+            v = v + (k1 * a + g1 * g)
+            q = q + d2 * v
+            call model%acceleration(q, a, st)
+            v = v + k3 * a
+            q = q + d2 * v
+            call model%acceleration(q, a, st)
+            v = v + k3 * a
+            q = q + d2 * v
+            call model%acceleration(q, a, st)
+            v = v + k3 * a
+            q = q + d2 * v
+            call model%acceleration(q, a, st)
+            v = v + k3 * a
+            q = q + d2 * v
+            call model%acceleration(q, a, st)
+            call model%gradient(q, a, g, st)
+            v = v + (k1 * a + g1 * g)
         end do
-        q = [x, y]; v = [vx, vy]
-    end subroutine hand_a6
+    end subroutine calls_a6
 
-    !> Blanes-Moan S6: d k d k d k d k d k d k d (6 forces per step).
-    subroutine hand_bm(c, h, nsteps, q, v)
-        real(wp), intent(in) :: c(13)           !! stage weights of the table
-        real(wp), intent(in) :: h               !! step
-        integer(ik), intent(in) :: nsteps       !! number of steps
-        real(wp), intent(inout) :: q(2), v(2)   !! state
-        real(wp) :: x, y, vx, vy, ax, ay, d1, k2, d3, k4, d5, k6, d7
+    !> BM by hand with the model's own calls on whole arrays (no checks, no copies).
+    subroutine calls_bm(c, h, nsteps, model, q, v, a, g)
+        real(wp), intent(in) :: c(:)   !! stage weights of the table
+        real(wp), intent(in) :: h                           !! step
+        integer(ik), intent(in) :: nsteps                   !! number of steps
+        class(force_model_t), intent(inout) :: model        !! force model
+        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)  !! state
+        real(wp), intent(inout), contiguous :: a(:, :), g(:, :)  !! force, gradient term
+        real(wp) :: d1, d3, d5, d7, k2, k4, k6
         integer(ik) :: i
+        integer :: st
+        st = 0
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h; d5 = c(5) * h
         k6 = c(6) * h; d7 = c(7) * h
-        x = q(1); y = q(2); vx = v(1); vy = v(2)
         do i = 1, nsteps
-            x = x + d1 * vx; y = y + d1 * vy
-            call acc(x, y, ax, ay)
-            vx = vx + k2 * ax; vy = vy + k2 * ay
-            x = x + d3 * vx; y = y + d3 * vy
-            call acc(x, y, ax, ay)
-            vx = vx + k4 * ax; vy = vy + k4 * ay
-            x = x + d5 * vx; y = y + d5 * vy
-            call acc(x, y, ax, ay)
-            vx = vx + k6 * ax; vy = vy + k6 * ay
-            x = x + d7 * vx; y = y + d7 * vy
-            call acc(x, y, ax, ay)
-            vx = vx + k6 * ax; vy = vy + k6 * ay
-            x = x + d5 * vx; y = y + d5 * vy
-            call acc(x, y, ax, ay)
-            vx = vx + k4 * ax; vy = vy + k4 * ay
-            x = x + d3 * vx; y = y + d3 * vy
-            call acc(x, y, ax, ay)
-            vx = vx + k2 * ax; vy = vy + k2 * ay
-            x = x + d1 * vx; y = y + d1 * vy
+            q = q + d1 * v
+            call model%acceleration(q, a, st)
+            v = v + k2 * a
+            q = q + d3 * v
+            call model%acceleration(q, a, st)
+            v = v + k4 * a
+            q = q + d5 * v
+            call model%acceleration(q, a, st)
+            v = v + k6 * a
+            q = q + d7 * v
+            call model%acceleration(q, a, st)
+            v = v + k6 * a
+            q = q + d5 * v
+            call model%acceleration(q, a, st)
+            v = v + k4 * a
+            q = q + d3 * v
+            call model%acceleration(q, a, st)
+            v = v + k2 * a
+            q = q + d1 * v
         end do
-        q = [x, y]; v = [vx, vy]
-    end subroutine hand_bm
+    end subroutine calls_bm
 
-    !> Forest-Ruth for n independent planar orbits, q(2, n): every stage a loop over the
-    !> bodies with the force written out (vectorisable).
-    subroutine hand_fr_n(c, h, nsteps, n, q, v)
-        real(wp), intent(in) :: c(7)                !! stage weights of the table
-        real(wp), intent(in) :: h                   !! step
-        integer(ik), intent(in) :: nsteps           !! number of steps
-        integer, intent(in) :: n                    !! bodies
-        real(wp), intent(inout) :: q(2, n), v(2, n) !! state
-        real(wp) :: d1, d3, k2, k4, ax, ay
+    !> FR for n independent Kepler orbits in d = 2 (mu = 1), the force written out:
+    !> steps outside, bodies inside (the body loop vectorises), state in registers.
+    subroutine inl2_fr(c, h, nsteps, n, q, v, a, g)
+        real(wp), intent(in) :: c(:)   !! stage weights of the table
+        real(wp), intent(in) :: h                           !! step
+        integer(ik), intent(in) :: nsteps                   !! number of steps
+        integer, intent(in) :: n                            !! bodies
+        real(wp), intent(inout) :: q(2, n), v(2, n)         !! state
+        real(wp), intent(inout) :: a(2, n), g(2, n)         !! force, gradient carried across steps
+        real(wp) :: d1, d3, k2, k4
+        real(wp) :: x, y, vx, vy, ax, ay, gx, gy
         integer(ik) :: i
         integer :: j
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h
         do i = 1, nsteps
             do j = 1, n
-                q(:, j) = q(:, j) + d1 * v(:, j)
-                call acc(q(1, j), q(2, j), ax, ay)
-                v(1, j) = v(1, j) + k2 * ax; v(2, j) = v(2, j) + k2 * ay
-                q(:, j) = q(:, j) + d3 * v(:, j)
-                call acc(q(1, j), q(2, j), ax, ay)
-                v(1, j) = v(1, j) + k4 * ax; v(2, j) = v(2, j) + k4 * ay
-                q(:, j) = q(:, j) + d3 * v(:, j)
-                call acc(q(1, j), q(2, j), ax, ay)
-                v(1, j) = v(1, j) + k2 * ax; v(2, j) = v(2, j) + k2 * ay
-                q(:, j) = q(:, j) + d1 * v(:, j)
+                x = q(1, j); y = q(2, j); vx = v(1, j); vy = v(2, j)
+                x = x + d1 * vx; y = y + d1 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k2 * ax; vy = vy + k2 * ay
+                x = x + d3 * vx; y = y + d3 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k4 * ax; vy = vy + k4 * ay
+                x = x + d3 * vx; y = y + d3 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k2 * ax; vy = vy + k2 * ay
+                x = x + d1 * vx; y = y + d1 * vy
+                q(1, j) = x; q(2, j) = y; v(1, j) = vx; v(2, j) = vy
             end do
         end do
-    end subroutine hand_fr_n
+    end subroutine inl2_fr
 
-    !> Kepler acceleration, mu = 1, written as the library's model writes it.
-    pure subroutine acc(x, y, ax, ay)
+    !> A for n independent Kepler orbits in d = 2 (mu = 1), the force written out:
+    !> steps outside, bodies inside (the body loop vectorises), state in registers.
+    subroutine inl2_a(c, u, h, nsteps, n, q, v, a, g)
+        real(wp), intent(in) :: c(:), u(:)   !! stage weights of the table
+        real(wp), intent(in) :: h                           !! step
+        integer(ik), intent(in) :: nsteps                   !! number of steps
+        integer, intent(in) :: n                            !! bodies
+        real(wp), intent(inout) :: q(2, n), v(2, n)         !! state
+        real(wp), intent(inout) :: a(2, n), g(2, n)         !! force, gradient carried across steps
+        real(wp) :: d2, g3, k1, k3
+        real(wp) :: x, y, vx, vy, ax, ay, gx, gy
+        integer(ik) :: i
+        integer :: j
+        k1 = c(1) * h; d2 = c(2) * h; k3 = c(3) * h; g3 = u(3) * h**3
+        do j = 1, n
+            call acc2(q(1, j), q(2, j), a(1, j), a(2, j))
+        end do
+        do i = 1, nsteps
+            do j = 1, n
+                x = q(1, j); y = q(2, j); vx = v(1, j); vy = v(2, j)
+                ax = a(1, j); ay = a(2, j)
+                vx = vx + k1 * ax; vy = vy + k1 * ay
+                x = x + d2 * vx; y = y + d2 * vy
+                call accg2(x, y, ax, ay, gx, gy)
+                vx = vx + (k3 * ax + g3 * gx); vy = vy + (k3 * ay + g3 * gy)
+                x = x + d2 * vx; y = y + d2 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k1 * ax; vy = vy + k1 * ay
+                q(1, j) = x; q(2, j) = y; v(1, j) = vx; v(2, j) = vy
+                a(1, j) = ax; a(2, j) = ay
+            end do
+        end do
+    end subroutine inl2_a
+
+    !> C for n independent Kepler orbits in d = 2 (mu = 1), the force written out:
+    !> steps outside, bodies inside (the body loop vectorises), state in registers.
+    subroutine inl2_c(c, u, h, nsteps, n, q, v, a, g)
+        real(wp), intent(in) :: c(:), u(:)   !! stage weights of the table
+        real(wp), intent(in) :: h                           !! step
+        integer(ik), intent(in) :: nsteps                   !! number of steps
+        integer, intent(in) :: n                            !! bodies
+        real(wp), intent(inout) :: q(2, n), v(2, n)         !! state
+        real(wp), intent(inout) :: a(2, n), g(2, n)         !! force, gradient carried across steps
+        real(wp) :: d1, d3, g4, k2, k4
+        real(wp) :: x, y, vx, vy, ax, ay, gx, gy
+        integer(ik) :: i
+        integer :: j
+        d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h; g4 = u(4) * h**3
+        do i = 1, nsteps
+            do j = 1, n
+                x = q(1, j); y = q(2, j); vx = v(1, j); vy = v(2, j)
+                x = x + d1 * vx; y = y + d1 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k2 * ax; vy = vy + k2 * ay
+                x = x + d3 * vx; y = y + d3 * vy
+                call accg2(x, y, ax, ay, gx, gy)
+                vx = vx + (k4 * ax + g4 * gx); vy = vy + (k4 * ay + g4 * gy)
+                x = x + d3 * vx; y = y + d3 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k2 * ax; vy = vy + k2 * ay
+                x = x + d1 * vx; y = y + d1 * vy
+                q(1, j) = x; q(2, j) = y; v(1, j) = vx; v(2, j) = vy
+            end do
+        end do
+    end subroutine inl2_c
+
+    !> A6 for n independent Kepler orbits in d = 2 (mu = 1), the force written out:
+    !> steps outside, bodies inside (the body loop vectorises), state in registers.
+    subroutine inl2_a6(c, u, h, nsteps, n, q, v, a, g)
+        real(wp), intent(in) :: c(:), u(:)   !! stage weights of the table
+        real(wp), intent(in) :: h                           !! step
+        integer(ik), intent(in) :: nsteps                   !! number of steps
+        integer, intent(in) :: n                            !! bodies
+        real(wp), intent(inout) :: q(2, n), v(2, n)         !! state
+        real(wp), intent(inout) :: a(2, n), g(2, n)         !! force, gradient carried across steps
+        real(wp) :: d2, g1, k1, k3
+        real(wp) :: x, y, vx, vy, ax, ay, gx, gy
+        integer(ik) :: i
+        integer :: j
+        k1 = c(1) * h; g1 = u(1) * h**3; d2 = c(2) * h; k3 = c(3) * h
+        do j = 1, n
+            call accg2(q(1, j), q(2, j), a(1, j), a(2, j), g(1, j), g(2, j))
+        end do
+        do i = 1, nsteps
+            do j = 1, n
+                x = q(1, j); y = q(2, j); vx = v(1, j); vy = v(2, j)
+                ax = a(1, j); ay = a(2, j)
+                gx = g(1, j); gy = g(2, j)
+                vx = vx + (k1 * ax + g1 * gx); vy = vy + (k1 * ay + g1 * gy)
+                x = x + d2 * vx; y = y + d2 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k3 * ax; vy = vy + k3 * ay
+                x = x + d2 * vx; y = y + d2 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k3 * ax; vy = vy + k3 * ay
+                x = x + d2 * vx; y = y + d2 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k3 * ax; vy = vy + k3 * ay
+                x = x + d2 * vx; y = y + d2 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k3 * ax; vy = vy + k3 * ay
+                x = x + d2 * vx; y = y + d2 * vy
+                call accg2(x, y, ax, ay, gx, gy)
+                vx = vx + (k1 * ax + g1 * gx); vy = vy + (k1 * ay + g1 * gy)
+                q(1, j) = x; q(2, j) = y; v(1, j) = vx; v(2, j) = vy
+                a(1, j) = ax; a(2, j) = ay
+                g(1, j) = gx; g(2, j) = gy
+            end do
+        end do
+    end subroutine inl2_a6
+
+    !> BM for n independent Kepler orbits in d = 2 (mu = 1), the force written out:
+    !> steps outside, bodies inside (the body loop vectorises), state in registers.
+    subroutine inl2_bm(c, h, nsteps, n, q, v, a, g)
+        real(wp), intent(in) :: c(:)   !! stage weights of the table
+        real(wp), intent(in) :: h                           !! step
+        integer(ik), intent(in) :: nsteps                   !! number of steps
+        integer, intent(in) :: n                            !! bodies
+        real(wp), intent(inout) :: q(2, n), v(2, n)         !! state
+        real(wp), intent(inout) :: a(2, n), g(2, n)         !! force, gradient carried across steps
+        real(wp) :: d1, d3, d5, d7, k2, k4, k6
+        real(wp) :: x, y, vx, vy, ax, ay, gx, gy
+        integer(ik) :: i
+        integer :: j
+        d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h; d5 = c(5) * h
+        k6 = c(6) * h; d7 = c(7) * h
+        do i = 1, nsteps
+            do j = 1, n
+                x = q(1, j); y = q(2, j); vx = v(1, j); vy = v(2, j)
+                x = x + d1 * vx; y = y + d1 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k2 * ax; vy = vy + k2 * ay
+                x = x + d3 * vx; y = y + d3 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k4 * ax; vy = vy + k4 * ay
+                x = x + d5 * vx; y = y + d5 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k6 * ax; vy = vy + k6 * ay
+                x = x + d7 * vx; y = y + d7 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k6 * ax; vy = vy + k6 * ay
+                x = x + d5 * vx; y = y + d5 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k4 * ax; vy = vy + k4 * ay
+                x = x + d3 * vx; y = y + d3 * vy
+                call acc2(x, y, ax, ay)
+                vx = vx + k2 * ax; vy = vy + k2 * ay
+                x = x + d1 * vx; y = y + d1 * vy
+                q(1, j) = x; q(2, j) = y; v(1, j) = vx; v(2, j) = vy
+            end do
+        end do
+    end subroutine inl2_bm
+
+    !> FR for n independent Kepler orbits in d = 3 (mu = 1), the force written out:
+    !> steps outside, bodies inside (the body loop vectorises), state in registers.
+    subroutine inl3_fr(c, h, nsteps, n, q, v, a, g)
+        real(wp), intent(in) :: c(:)   !! stage weights of the table
+        real(wp), intent(in) :: h                           !! step
+        integer(ik), intent(in) :: nsteps                   !! number of steps
+        integer, intent(in) :: n                            !! bodies
+        real(wp), intent(inout) :: q(3, n), v(3, n)         !! state
+        real(wp), intent(inout) :: a(3, n), g(3, n)         !! force, gradient carried across steps
+        real(wp) :: d1, d3, k2, k4
+        real(wp) :: x, y, z, vx, vy, vz, ax, ay, az, gx, gy, gz
+        integer(ik) :: i
+        integer :: j
+        d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h
+        do i = 1, nsteps
+            do j = 1, n
+                x = q(1, j); y = q(2, j); z = q(3, j); vx = v(1, j); vy = v(2, j); vz = v(3, j)
+                x = x + d1 * vx; y = y + d1 * vy; z = z + d1 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k2 * ax; vy = vy + k2 * ay; vz = vz + k2 * az
+                x = x + d3 * vx; y = y + d3 * vy; z = z + d3 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k4 * ax; vy = vy + k4 * ay; vz = vz + k4 * az
+                x = x + d3 * vx; y = y + d3 * vy; z = z + d3 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k2 * ax; vy = vy + k2 * ay; vz = vz + k2 * az
+                x = x + d1 * vx; y = y + d1 * vy; z = z + d1 * vz
+                q(1, j) = x; q(2, j) = y; q(3, j) = z; v(1, j) = vx; v(2, j) = vy; v(3, j) = vz
+            end do
+        end do
+    end subroutine inl3_fr
+
+    !> A for n independent Kepler orbits in d = 3 (mu = 1), the force written out:
+    !> steps outside, bodies inside (the body loop vectorises), state in registers.
+    subroutine inl3_a(c, u, h, nsteps, n, q, v, a, g)
+        real(wp), intent(in) :: c(:), u(:)   !! stage weights of the table
+        real(wp), intent(in) :: h                           !! step
+        integer(ik), intent(in) :: nsteps                   !! number of steps
+        integer, intent(in) :: n                            !! bodies
+        real(wp), intent(inout) :: q(3, n), v(3, n)         !! state
+        real(wp), intent(inout) :: a(3, n), g(3, n)         !! force, gradient carried across steps
+        real(wp) :: d2, g3, k1, k3
+        real(wp) :: x, y, z, vx, vy, vz, ax, ay, az, gx, gy, gz
+        integer(ik) :: i
+        integer :: j
+        k1 = c(1) * h; d2 = c(2) * h; k3 = c(3) * h; g3 = u(3) * h**3
+        do j = 1, n
+            call acc3(q(1, j), q(2, j), q(3, j), a(1, j), a(2, j), a(3, j))
+        end do
+        do i = 1, nsteps
+            do j = 1, n
+                x = q(1, j); y = q(2, j); z = q(3, j); vx = v(1, j); vy = v(2, j); vz = v(3, j)
+                ax = a(1, j); ay = a(2, j); az = a(3, j)
+                vx = vx + k1 * ax; vy = vy + k1 * ay; vz = vz + k1 * az
+                x = x + d2 * vx; y = y + d2 * vy; z = z + d2 * vz
+                call accg3(x, y, z, ax, ay, az, gx, gy, gz)
+                vx = vx + (k3 * ax + g3 * gx)
+                vy = vy + (k3 * ay + g3 * gy)
+                vz = vz + (k3 * az + g3 * gz)
+                x = x + d2 * vx; y = y + d2 * vy; z = z + d2 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k1 * ax; vy = vy + k1 * ay; vz = vz + k1 * az
+                q(1, j) = x; q(2, j) = y; q(3, j) = z; v(1, j) = vx; v(2, j) = vy; v(3, j) = vz
+                a(1, j) = ax; a(2, j) = ay; a(3, j) = az
+            end do
+        end do
+    end subroutine inl3_a
+
+    !> C for n independent Kepler orbits in d = 3 (mu = 1), the force written out:
+    !> steps outside, bodies inside (the body loop vectorises), state in registers.
+    subroutine inl3_c(c, u, h, nsteps, n, q, v, a, g)
+        real(wp), intent(in) :: c(:), u(:)   !! stage weights of the table
+        real(wp), intent(in) :: h                           !! step
+        integer(ik), intent(in) :: nsteps                   !! number of steps
+        integer, intent(in) :: n                            !! bodies
+        real(wp), intent(inout) :: q(3, n), v(3, n)         !! state
+        real(wp), intent(inout) :: a(3, n), g(3, n)         !! force, gradient carried across steps
+        real(wp) :: d1, d3, g4, k2, k4
+        real(wp) :: x, y, z, vx, vy, vz, ax, ay, az, gx, gy, gz
+        integer(ik) :: i
+        integer :: j
+        d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h; g4 = u(4) * h**3
+        do i = 1, nsteps
+            do j = 1, n
+                x = q(1, j); y = q(2, j); z = q(3, j); vx = v(1, j); vy = v(2, j); vz = v(3, j)
+                x = x + d1 * vx; y = y + d1 * vy; z = z + d1 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k2 * ax; vy = vy + k2 * ay; vz = vz + k2 * az
+                x = x + d3 * vx; y = y + d3 * vy; z = z + d3 * vz
+                call accg3(x, y, z, ax, ay, az, gx, gy, gz)
+                vx = vx + (k4 * ax + g4 * gx)
+                vy = vy + (k4 * ay + g4 * gy)
+                vz = vz + (k4 * az + g4 * gz)
+                x = x + d3 * vx; y = y + d3 * vy; z = z + d3 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k2 * ax; vy = vy + k2 * ay; vz = vz + k2 * az
+                x = x + d1 * vx; y = y + d1 * vy; z = z + d1 * vz
+                q(1, j) = x; q(2, j) = y; q(3, j) = z; v(1, j) = vx; v(2, j) = vy; v(3, j) = vz
+            end do
+        end do
+    end subroutine inl3_c
+
+    !> A6 for n independent Kepler orbits in d = 3 (mu = 1), the force written out:
+    !> steps outside, bodies inside (the body loop vectorises), state in registers.
+    subroutine inl3_a6(c, u, h, nsteps, n, q, v, a, g)
+        real(wp), intent(in) :: c(:), u(:)   !! stage weights of the table
+        real(wp), intent(in) :: h                           !! step
+        integer(ik), intent(in) :: nsteps                   !! number of steps
+        integer, intent(in) :: n                            !! bodies
+        real(wp), intent(inout) :: q(3, n), v(3, n)         !! state
+        real(wp), intent(inout) :: a(3, n), g(3, n)         !! force, gradient carried across steps
+        real(wp) :: d2, g1, k1, k3
+        real(wp) :: x, y, z, vx, vy, vz, ax, ay, az, gx, gy, gz
+        integer(ik) :: i
+        integer :: j
+        k1 = c(1) * h; g1 = u(1) * h**3; d2 = c(2) * h; k3 = c(3) * h
+        do j = 1, n
+            call accg3(q(1, j), q(2, j), q(3, j), &
+                      a(1, j), a(2, j), a(3, j), g(1, j), g(2, j), g(3, j))
+        end do
+        do i = 1, nsteps
+            do j = 1, n
+                x = q(1, j); y = q(2, j); z = q(3, j); vx = v(1, j); vy = v(2, j); vz = v(3, j)
+                ax = a(1, j); ay = a(2, j); az = a(3, j)
+                gx = g(1, j); gy = g(2, j); gz = g(3, j)
+                vx = vx + (k1 * ax + g1 * gx)
+                vy = vy + (k1 * ay + g1 * gy)
+                vz = vz + (k1 * az + g1 * gz)
+                x = x + d2 * vx; y = y + d2 * vy; z = z + d2 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k3 * ax; vy = vy + k3 * ay; vz = vz + k3 * az
+                x = x + d2 * vx; y = y + d2 * vy; z = z + d2 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k3 * ax; vy = vy + k3 * ay; vz = vz + k3 * az
+                x = x + d2 * vx; y = y + d2 * vy; z = z + d2 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k3 * ax; vy = vy + k3 * ay; vz = vz + k3 * az
+                x = x + d2 * vx; y = y + d2 * vy; z = z + d2 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k3 * ax; vy = vy + k3 * ay; vz = vz + k3 * az
+                x = x + d2 * vx; y = y + d2 * vy; z = z + d2 * vz
+                call accg3(x, y, z, ax, ay, az, gx, gy, gz)
+                vx = vx + (k1 * ax + g1 * gx)
+                vy = vy + (k1 * ay + g1 * gy)
+                vz = vz + (k1 * az + g1 * gz)
+                q(1, j) = x; q(2, j) = y; q(3, j) = z; v(1, j) = vx; v(2, j) = vy; v(3, j) = vz
+                a(1, j) = ax; a(2, j) = ay; a(3, j) = az
+                g(1, j) = gx; g(2, j) = gy; g(3, j) = gz
+            end do
+        end do
+    end subroutine inl3_a6
+
+    !> BM for n independent Kepler orbits in d = 3 (mu = 1), the force written out:
+    !> steps outside, bodies inside (the body loop vectorises), state in registers.
+    subroutine inl3_bm(c, h, nsteps, n, q, v, a, g)
+        real(wp), intent(in) :: c(:)   !! stage weights of the table
+        real(wp), intent(in) :: h                           !! step
+        integer(ik), intent(in) :: nsteps                   !! number of steps
+        integer, intent(in) :: n                            !! bodies
+        real(wp), intent(inout) :: q(3, n), v(3, n)         !! state
+        real(wp), intent(inout) :: a(3, n), g(3, n)         !! force, gradient carried across steps
+        real(wp) :: d1, d3, d5, d7, k2, k4, k6
+        real(wp) :: x, y, z, vx, vy, vz, ax, ay, az, gx, gy, gz
+        integer(ik) :: i
+        integer :: j
+        d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h; d5 = c(5) * h
+        k6 = c(6) * h; d7 = c(7) * h
+        do i = 1, nsteps
+            do j = 1, n
+                x = q(1, j); y = q(2, j); z = q(3, j); vx = v(1, j); vy = v(2, j); vz = v(3, j)
+                x = x + d1 * vx; y = y + d1 * vy; z = z + d1 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k2 * ax; vy = vy + k2 * ay; vz = vz + k2 * az
+                x = x + d3 * vx; y = y + d3 * vy; z = z + d3 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k4 * ax; vy = vy + k4 * ay; vz = vz + k4 * az
+                x = x + d5 * vx; y = y + d5 * vy; z = z + d5 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k6 * ax; vy = vy + k6 * ay; vz = vz + k6 * az
+                x = x + d7 * vx; y = y + d7 * vy; z = z + d7 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k6 * ax; vy = vy + k6 * ay; vz = vz + k6 * az
+                x = x + d5 * vx; y = y + d5 * vy; z = z + d5 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k4 * ax; vy = vy + k4 * ay; vz = vz + k4 * az
+                x = x + d3 * vx; y = y + d3 * vy; z = z + d3 * vz
+                call acc3(x, y, z, ax, ay, az)
+                vx = vx + k2 * ax; vy = vy + k2 * ay; vz = vz + k2 * az
+                x = x + d1 * vx; y = y + d1 * vy; z = z + d1 * vz
+                q(1, j) = x; q(2, j) = y; q(3, j) = z; v(1, j) = vx; v(2, j) = vy; v(3, j) = vz
+            end do
+        end do
+    end subroutine inl3_bm
+    !> Kepler acceleration in the plane, mu = 1, written as the library's model writes it.
+    pure subroutine acc2(x, y, ax, ay)
         real(wp), intent(in) :: x, y
         real(wp), intent(out) :: ax, ay
         real(wp) :: r2, s
         r2 = x**2 + y**2
         s = -1.0_wp / (r2 * sqrt(r2))
         ax = s * x; ay = s * y
-    end subroutine acc
+    end subroutine acc2
 
-    !> Acceleration and gradient term 4 a / r^3 (mu = 1).
-    pure subroutine accg(x, y, ax, ay, gx, gy)
+    !> Planar acceleration and gradient term 4 a / r^3 (mu = 1).
+    pure subroutine accg2(x, y, ax, ay, gx, gy)
         real(wp), intent(in) :: x, y
         real(wp), intent(out) :: ax, ay, gx, gy
         real(wp) :: r2, s
@@ -194,6 +573,28 @@ contains
         ax = s * x; ay = s * y
         s = 4.0_wp / (r2 * sqrt(r2))
         gx = s * ax; gy = s * ay
-    end subroutine accg
+    end subroutine accg2
+
+    !> Kepler acceleration in space, mu = 1.
+    pure subroutine acc3(x, y, z, ax, ay, az)
+        real(wp), intent(in) :: x, y, z
+        real(wp), intent(out) :: ax, ay, az
+        real(wp) :: r2, s
+        r2 = x**2 + y**2 + z**2
+        s = -1.0_wp / (r2 * sqrt(r2))
+        ax = s * x; ay = s * y; az = s * z
+    end subroutine acc3
+
+    !> Acceleration and gradient term in space (mu = 1).
+    pure subroutine accg3(x, y, z, ax, ay, az, gx, gy, gz)
+        real(wp), intent(in) :: x, y, z
+        real(wp), intent(out) :: ax, ay, az, gx, gy, gz
+        real(wp) :: r2, s
+        r2 = x**2 + y**2 + z**2
+        s = -1.0_wp / (r2 * sqrt(r2))
+        ax = s * x; ay = s * y; az = s * z
+        s = 4.0_wp / (r2 * sqrt(r2))
+        gx = s * ax; gy = s * ay; gz = s * az
+    end subroutine accg3
 
 end module fsym_handloops

@@ -6,7 +6,7 @@ module fsym_timing
     implicit none
     private
 
-    public :: seconds_since, median
+    public :: seconds_since, median, quantile
 
 contains
 
@@ -41,5 +41,32 @@ contains
             median = 0.5_wp * (y(m / 2) + y(m / 2 + 1))
         end if
     end function median
+
+    !> The p-quantile of the values (0 <= p <= 1; linear between order statistics).
+    pure real(wp) function quantile(x, p)
+        real(wp), intent(in) :: x(:)   !! values
+        real(wp), intent(in) :: p      !! probability
+        real(wp) :: y(size(x)), t, pos
+        integer :: i, j, lo
+        y = x
+        do i = 2, size(y)
+            t = y(i); j = i - 1
+            do while (j >= 1)
+                if (y(j) <= t) exit
+                y(j + 1) = y(j); j = j - 1
+            end do
+            y(j + 1) = t
+        end do
+        if (size(y) == 0) then
+            quantile = 0.0_wp; return
+        end if
+        pos = 1.0_wp + p * real(size(y) - 1, wp)
+        lo = min(int(pos), size(y) - 1)
+        if (size(y) == 1) then
+            quantile = y(1)
+        else
+            quantile = y(lo) + (pos - real(lo, wp)) * (y(lo + 1) - y(lo))
+        end if
+    end function quantile
 
 end module fsym_timing
