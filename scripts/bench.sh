@@ -1,12 +1,21 @@
 #!/usr/bin/env bash
-# Engine benchmarks: builds fsym-bench in release mode, runs it and writes doc/benchmarks.md
-# (overhead vs hand loops, ensemble scaling, N-body scaling, memory: VmRSS over 1e7 steps and
-# valgrind heap counts for 1e3 vs 1e5 steps). Takes a few minutes on 2 cores.
+# Engine benchmarks (a benchmark, not a test): builds fsym-bench in release mode.
+#   bash scripts/bench.sh --ratios [NREP]   print the ratio lines only (library against
+#                                           hand-written loops; NREP repetitions, default 21)
+#   bash scripts/bench.sh                   write doc/benchmarks.md (the ratios, N-body
+#                                           scaling, memory: VmRSS over 1e7 steps and valgrind
+#                                           heap counts for 1e3 vs 1e5 steps); a few minutes
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/setup.sh
-FLAGS="-O3 -march=native -funroll-loops -std=f2008"
-VGFLAGS="-O2 -g -std=f2008"      # valgrind does not know every -march=native instruction
+FLAGS="-O3 -march=native -funroll-loops -std=f2008 -ffp-contract=off"
+VGFLAGS="-O2 -g -std=f2008 -ffp-contract=off"   # valgrind lacks some -march=native instructions
+if [ "${1:-}" = "--ratios" ]; then
+    fpm build --profile release --flag "$FLAGS" >/dev/null
+    fpm run --profile release --flag "$FLAGS" fsym-bench -- ratios "${2:-21}" 2>/dev/null \
+        | grep -E '^(ratio|nspf) '
+    exit 0
+fi
 out=doc/benchmarks.md
 tmp=$(mktemp)
 trap 'rm -f "$tmp" "$tmp".*' EXIT
@@ -26,8 +35,8 @@ fpm build --profile release --flag "$FLAGS" >/dev/null
     fpm run --profile release --flag "$FLAGS" fsym-bench -- all 2>/dev/null | grep -v '^\['
     echo "## Memory"
     echo
-    echo "No allocation after \`init\`: three steppers (FR on the kernel's Kepler path, C' on"
-    echo "the general path with the extrapolated force, RKN) each take N steps one \`step\` at a"
+    echo "No allocation after \`init\`: three steppers (FR with the built-in Kepler model, C' with"
+    echo "a user's model and the extrapolated force, RKN) each take N steps one \`step\` at a"
     echo "time, then FR takes N steps in one \`run\` call; the heap"
     echo "counts of valgrind are the same for N = 1e3 and N = 1e5"
     echo "(\`fpm run --flag \"$VGFLAGS\" --runner \"valgrind\" fsym-bench -- steps N\`):"
@@ -53,34 +62,20 @@ cat >> "$tmp" <<'NOTES'
 
 ## Notes on the design (what the tables measure)
 
-- `run`, Kepler path: `integrator_t%run` (and `step`, which is `run` of one step) recognises
-  the library's own `kepler_model_t` (exactly that type) and calls
-  `fsym_kernel_run_kepler`, which takes every step in the kernel with the force called
-  directly: no reverse communication, no dynamic dispatch per force, no return to the
-  caller between steps. A planar body keeps its state, forces and cache flags in registers
-  for the whole run; the per-step promises stay (every force and every new state checked
-  for NaN/Inf, a failing step undone, counters exact). The stage updates are the same
-  `axpy`/`axpy2` the general path applies to arrays; `test/test_fastpath.f90` checks that
-  `run(k)` is bitwise `k` general-path steps (states, counters, clock) and that a failing
-  run stops at the same step with the same state, counters and message.
-- `step`: the same kernel path, but one call per step, and each call pays the checks a
-  call must make (initialised? shapes? the cached force still valid for this q? h finite?
-  the state finite on entry?), the save of the state for the restore, and the calls between
-  modules. For one planar body that costs about as much as the force itself: use `run`
-  when the steps need nothing in between.
-- General path: any other model (here an extension of `kepler_model_t`): the kernel returns
-  to `integrator_t%step` for every force, which calls the model's type-bound procedure.
-- Ensemble: many bodies run stage by stage on blocks of 64 (the loops vectorise); the
-  force (`kepler_field`) works in three passes per block (|q|^2, the factor, the product).
-  The hand loop still wins by keeping each body's state in registers through all stages;
-  the library's stages each pass over the block in memory.
-- Tried during development and dropped because they were slower (on code not kept, so no
-  figures here): a single loop for the force with the strided loads and stores of q(2, n)
-  around the square root and division; saving the state of every step in the block path
-  (a failing step is now rebuilt from the state at the start of the run instead); planar
-  bodies in groups of 16 held in local arrays through all steps ("lanes": the arrays
-  stayed in memory and every stage became a short loop of its own); `-flto` and
-  `-mprefer-vector-width=512` brought no gain.
+- One kernel (`src/fsym_kernel.f90`) runs every model: a loop over steps with the loop over
+  the stage table inside, the model called directly through its type-bound procedures. It
+  has no model-specific path; the built-in Kepler model's speed comes from its own force
+  routines (contiguous arrays, vectorised loops in any d).
+- Per step the kernel saves q and v (a failing step is undone bitwise), checks every force
+  and the new state for NaN/Inf, and keeps the first-same-as-last force. The hand loops
+  (`app/fsym_handloops.f90`) do none of this; `run/hand` is the price of those promises
+  plus the stage-table interpretation.
+- `inlined/hand` compares with loops that keep each body's state in registers through all
+  stages of a step and write the force out (no calls, no array passes): the kernel passes
+  over whole arrays once per stage, which costs memory traffic that the fused loop avoids.
+- `step/hand`: each `step` call pays the checks a call must make (initialised? shapes? the
+  cached force still valid for this q? h finite? the state finite on entry?) on top of the
+  step; use `run` (with an observer every k steps if the state is needed in between).
 - Time per step outside the force is the kernel's O(n) work; for the N-body force it is
   O(N) against the force's O(N^2).
 NOTES

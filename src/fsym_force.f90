@@ -70,11 +70,18 @@ contains
         real(wp), intent(in) :: x(m)     !! values
         real(wp) :: acc(16), s
         integer :: i, mb
-        mb = m - mod(m, 16); acc = 0.0_wp
-        do i = 1, mb, 16
-            acc = acc + x(i:i + 15)
-        end do
-        s = sum(acc) + sum(x(mb + 1:m))
+        if (m < 16) then
+            s = 0.0_wp
+            do i = 1, m
+                s = s + x(i)
+            end do
+        else
+            mb = m - mod(m, 16); acc = x(1:16)
+            do i = 17, mb, 16
+                acc = acc + x(i:i + 15)
+            end do
+            s = sum(acc) + sum(x(mb + 1:m))
+        end if
         fsym_all_finite = abs(s) <= huge(s)
         if (.not. fsym_all_finite) fsym_all_finite = all(ieee_is_finite(x))
     end function fsym_all_finite

@@ -105,8 +105,8 @@ contains
     !> (`ks%req`). `step0` numbers the steps for the recorder (step0 + 1 is the first).
     subroutine fsym_kernel_run(op, c, u, model, ks, q, v, w, h, nsteps, ndone, stat, &
                                recorder, step0)
-        integer, intent(in) :: op(:)                             !! op codes of the stages
-        real(wp), intent(in) :: c(:), u(:)                       !! stage coefficients
+        integer, intent(in), contiguous :: op(:)                 !! op codes of the stages
+        real(wp), intent(in), contiguous :: c(:), u(:)           !! stage coefficients
         class(force_model_t), intent(inout) :: model             !! force model
         type(kernel_state_t), intent(inout) :: ks                !! kernel state
         real(wp), intent(inout) :: q(ks%d, ks%n), v(ks%d, ks%n)  !! state
@@ -265,12 +265,15 @@ contains
             real(wp), intent(in) :: s, y(m)
             real(wp) :: inc, t
             integer :: j
-            if (.not. ks%comp) then
-                x = x + s * y; return
+            if (ks%comp) then
+                do j = 1, m
+                    inc = s * y(j) - e(j); t = x(j) + inc; e(j) = (t - x(j)) - inc; x(j) = t
+                end do
+            else
+                do j = 1, m
+                    x(j) = x(j) + s * y(j)
+                end do
             end if
-            do j = 1, m
-                inc = s * y(j) - e(j); t = x(j) + inc; e(j) = (t - x(j)) - inc; x(j) = t
-            end do
         end subroutine update
 
         !> x <- x + (s y + r z), Kahan-compensated in e when `ks%comp`.
@@ -279,13 +282,16 @@ contains
             real(wp), intent(in) :: s, y(m), r, z(m)
             real(wp) :: inc, t
             integer :: j
-            if (.not. ks%comp) then
-                x = x + (s * y + r * z); return
+            if (ks%comp) then
+                do j = 1, m
+                    inc = (s * y(j) + r * z(j)) - e(j); t = x(j) + inc; e(j) = (t - x(j)) - inc
+                    x(j) = t
+                end do
+            else
+                do j = 1, m
+                    x(j) = x(j) + (s * y(j) + r * z(j))
+                end do
             end if
-            do j = 1, m
-                inc = (s * y(j) + r * z(j)) - e(j); t = x(j) + inc; e(j) = (t - x(j)) - inc
-                x(j) = t
-            end do
         end subroutine update2
 
     end subroutine fsym_kernel_run
