@@ -188,7 +188,7 @@ contains
         character(len=*), intent(inout), optional :: errmsg
         class(recorder_t), intent(inout), optional :: recorder
         integer :: st
-        integer(ik) :: step0, nf, ng
+        integer(ik) :: step0, nf, ng, nfused
         ndone = 0
         if (.not. self%ready) then
             call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'integrator_t%step before init', stat, &
@@ -209,8 +209,13 @@ contains
             end if
         end if
         step0 = self%steps()
+        nfused = 0
+        if (.not. present(recorder) .and. .not. self%ks%active) &
+            call model%advance(self%sc%op, self%sc%c, self%sc%u, self%ks, q, v, self%w, h, &
+                               nsteps, nfused)
         call fsym_kernel_run(self%sc%op, self%sc%c, self%sc%u, model, self%ks, q, v, self%w, h, &
-                             nsteps, ndone, st, recorder, step0)
+                             nsteps - nfused, ndone, st, recorder, step0 + nfused)
+        ndone = ndone + nfused
         nf = self%ks%nf; ng = self%ks%ng
         call self%counters(nf, ng, 1)
         call self%count_step(h, ndone)

@@ -4,9 +4,12 @@
 !> paper. Scalar physics is pure; `kepler_model_t` is the force model for `n` independent
 !> bodies about a fixed centre (columns of q).
 module fsym_kepler
-    use fsym_kinds, only: wp
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use fsym_kinds, only: wp, ik
     use fsym_status
     use fsym_force, only: force_model_t
+    use fsym_kernel_state, only: kernel_state_t
+    use fsym_scheme, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
     implicit none
     private
 
@@ -26,6 +29,7 @@ module fsym_kepler
         procedure :: has_gradient => kepler_model_has_gradient  !! true
         procedure :: potential => kepler_model_potential  !! sum of -mu/|q_j|
         procedure :: has_potential => kepler_model_has_potential  !! true
+        procedure :: advance => kepler_model_advance  !! one body in d = 2, 3: fused steps
     end type kepler_model_t
 
     public :: kepler_acceleration, kepler_gradient, kepler_potential, kepler_energy
@@ -304,6 +308,125 @@ contains
             end select
         end do
     end subroutine scaled_columns
+
+    !> The fused one-body stepper (see `force_model_t%advance`): one body in d = 2 or 3,
+    !> without compensation, runs the scheme's stage table with its state, forces, cache
+    !> flags and counters in scalars (the third component is 0 in the plane, which changes
+    !> no bit), the force written out with the operations of `kepler_field` and
+    !> `kepler_field_gradient`. Bitwise the kernel's steps (`test/test_kernel_fused.pf`).
+    !> It stops before the first step whose checks fail (that step undone on scalars); the
+    !> kernel then takes it and reports the failure.
+    subroutine kepler_model_advance(self, op, c, u, ks, q, v, w, h, nsteps, ndone)
+        class(kepler_model_t), intent(inout) :: self              !! the model
+        integer, intent(in), contiguous :: op(:)                  !! op codes of the stages
+        real(wp), intent(in), contiguous :: c(:), u(:)            !! stage coefficients
+        type(kernel_state_t), intent(inout) :: ks                 !! kernel state
+        real(wp), intent(inout) :: q(ks%d, ks%n), v(ks%d, ks%n)   !! state
+        real(wp), intent(inout) :: w(ks%d, ks%n, ks%nslot)        !! the kernel's work array
+        real(wp), intent(in) :: h                                 !! step
+        integer(ik), intent(in) :: nsteps                         !! steps wanted
+        integer(ik), intent(out) :: ndone                         !! steps taken
+        ! x position, y velocity, a force, g gradient term, e force at the shifted point p
+        real(wp), dimension(3) :: x, y, a, g, e, p, x0, y0, a0, g0, e0, p0
+        real(wp) :: mu, s, r, xs, xs0, shift
+        logical :: ha, hg, hx, ha0, hg0, hx0, ok
+        integer(ik) :: i, nf, ng, nf0, ng0
+        integer :: k, d
+        ndone = 0
+        d = ks%d
+        if (ks%n /= 1 .or. (d /= 2 .and. d /= 3) .or. ks%comp .or. ks%active) return
+        if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) return
+        if (.not. (all(ieee_is_finite(q)) .and. all(ieee_is_finite(v)))) return
+        if (ks%have_a) then
+            if (any(q(:, 1) /= w(:, 1, ks%iqlast))) then
+                ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
+            end if
+        end if
+        mu = self%mu
+        x = 0.0_wp; y = 0.0_wp; a = 0.0_wp; g = 0.0_wp; e = 0.0_wp; p = 0.0_wp
+        x(1:d) = q(:, 1); y(1:d) = v(:, 1)
+        ha = ks%have_a; hg = ks%have_g; hx = ks%have_x; xs = ks%xshift
+        if (ha) a(1:d) = w(:, 1, ks%ia)
+        if (hg) g(1:d) = w(:, 1, ks%ig)
+        if (hx) then
+            e(1:d) = w(:, 1, ks%iae); p(1:d) = w(:, 1, ks%iqe)
+        end if
+        nf = ks%nf; ng = ks%ng
+        ok = .true.
+        do i = 1, nsteps
+            x0 = x; y0 = y; a0 = a; g0 = g; e0 = e; p0 = p
+            ha0 = ha; hg0 = hg; hx0 = hx; xs0 = xs; nf0 = nf; ng0 = ng
+            do k = 1, size(op)
+                if (op(k) /= OP_DRIFT .and. .not. ha) then
+                    call field(-mu, x, x, a, ok)
+                    if (.not. ok) exit
+                    ha = .true.; nf = nf + 1
+                end if
+                select case (op(k))
+                case (OP_DRIFT)
+                    s = c(k) * h
+                    x = x + s * y
+                    ha = .false.; hg = .false.; hx = .false.
+                case (OP_KICK)
+                    s = c(k) * h
+                    y = y + s * a
+                case (OP_GRAD_KICK)
+                    if (.not. hg) then
+                        call field(4.0_wp * mu, x, a, g, ok)
+                        if (.not. ok) exit
+                        hg = .true.; ng = ng + 1
+                    end if
+                    s = c(k) * h
+                    r = u(k) * h**3
+                    y = y + (s * a + r * g)
+                case (OP_EXTRAP_KICK)
+                    shift = u(k) * h * h
+                    if (.not. hx .or. xs /= shift) then
+                        p = x + shift * a
+                        xs = shift
+                        call field(-mu, p, p, e, ok)
+                        if (.not. ok) exit
+                        hx = .true.; nf = nf + 1
+                    end if
+                    s = c(k) * h
+                    y = y + s * e
+                case default
+                    continue      ! a validated scheme has no other op codes
+                end select
+            end do
+            if (ok) ok = all(ieee_is_finite(x)) .and. all(ieee_is_finite(y))
+            if (.not. ok) then
+                ! leave this step to the kernel: back to its start
+                x = x0; y = y0; a = a0; g = g0; e = e0; p = p0
+                ha = ha0; hg = hg0; hx = hx0; xs = xs0; nf = nf0; ng = ng0
+                exit
+            end if
+            ndone = i
+        end do
+        q(:, 1) = x(1:d); v(:, 1) = y(1:d)
+        if (ha) then
+            w(:, 1, ks%ia) = a(1:d); w(:, 1, ks%iqlast) = x(1:d)
+        end if
+        if (hg) w(:, 1, ks%ig) = g(1:d)
+        if (hx) then
+            w(:, 1, ks%iae) = e(1:d); w(:, 1, ks%iqe) = p(1:d)
+        end if
+        ks%have_a = ha; ks%have_g = hg; ks%have_x = hx; ks%xshift = xs
+        ks%nf = nf; ks%ng = ng
+    end subroutine kepler_model_advance
+
+    !> f = (cf / |r|^3) z with r^2 = x1^2 + x2^2 + x3^2 (the operations of `scaled_columns`);
+    !> `ok` false when f is not finite.
+    pure subroutine field(cf, r, z, f, ok)
+        real(wp), intent(in) :: cf, r(3), z(3)
+        real(wp), intent(out) :: f(3)
+        logical, intent(out) :: ok
+        real(wp) :: r2, t
+        r2 = r(1)**2 + r(2)**2 + r(3)**2
+        t = cf / (r2 * sqrt(r2))
+        f = t * z
+        ok = ieee_is_finite(f(1)) .and. ieee_is_finite(f(2)) .and. ieee_is_finite(f(3))
+    end subroutine field
 
     !> The Kepler model provides the gradient term.
     logical function kepler_model_has_gradient(self)

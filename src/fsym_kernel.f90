@@ -3,7 +3,7 @@
 !> its own force routines. The modern integrator, the F77 face (its EXTERNAL routines in a
 !> small model type), the reverse-communication face and the C face all run this code.
 !>
-!> The state is `kernel_state_t`: named slot indices into a caller-owned work array
+!> The state is `kernel_state_t` (`fsym_kernel_state`): named slot indices into a caller-owned work array
 !> `w(d, n, nslot)`, the force cache, the step in progress and the evaluation counters.
 !> A step never allocates and does no I/O. It either completes or leaves q, v (and the
 !> compensation terms) bitwise as they were on entry: every force and every new state is
@@ -20,36 +20,13 @@ module fsym_kernel
     use fsym_scheme, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
     use fsym_force, only: force_model_t, recorder_t, EVAL_FORCE, EVAL_GRADIENT, &
                           EVAL_EXTRAPOLATED, fsym_all_finite
+    use fsym_kernel_state, only: kernel_state_t, KERNEL_SUSPEND, REQ_NONE, REQ_FORCE, &
+                                 REQ_GRADIENT, REQ_FORCE_SHIFTED
     implicit none
     private
 
-    integer, parameter, public :: KERNEL_SUSPEND = -1  !! model stat / kernel stat: suspended
-    integer, parameter, public :: REQ_NONE = 0           !! no force outstanding
-    integer, parameter, public :: REQ_FORCE = 1          !! a(q) into slot `ia`
-    integer, parameter, public :: REQ_GRADIENT = 2       !! g(q) into slot `ig` (a(q) in `ia`)
-    integer, parameter, public :: REQ_FORCE_SHIFTED = 3  !! a(x) into `iae`, x in slot `iqe`
-
-    !> The kernel's state: where each array lives in the work array, what the cache holds,
-    !> the step in progress and the counters.
-    type, public :: kernel_state_t
-        integer :: d = 0, n = 0             !! dimensions, particles
-        integer :: nslot = 0                !! slots of d*n reals in the work array
-        integer :: ia = 1, ig = 1           !! slots: acceleration, gradient term at q
-        integer :: iqe = 1, iae = 1         !! slots: shifted point, acceleration there
-        integer :: iq0 = 1, iv0 = 1         !! slots: q, v on entry to the step
-        integer :: iqlast = 1               !! slot: q the cached force belongs to
-        integer :: iqc = 1, ivc = 1         !! slots: compensation terms of q, v
-        integer :: iqc0 = 1, ivc0 = 1       !! slots: compensation terms on entry
-        logical :: comp = .false.           !! Kahan-compensated updates
-        logical :: have_a = .false., have_g = .false., have_x = .false.
-            !! slots ia, ig, iae hold valid forces
-        logical :: active = .false.         !! a suspended step is in progress
-        integer :: pc = 0                   !! stage in progress, or that failed (0: on entry)
-        integer :: req = REQ_NONE           !! force outstanding while suspended
-        real(wp) :: h = 0.0_wp              !! step of the step in progress
-        real(wp) :: xshift = 0.0_wp         !! u h^2 of the cached extrapolated force
-        integer(ik) :: nf = 0, ng = 0       !! force and gradient evaluations accepted
-    end type kernel_state_t
+    public :: kernel_state_t, KERNEL_SUSPEND, REQ_NONE, REQ_FORCE, REQ_GRADIENT
+    public :: REQ_FORCE_SHIFTED
 
     public :: fsym_kernel_layout, fsym_kernel_run, fsym_kernel_abort, fsym_kernel_invalidate
 
