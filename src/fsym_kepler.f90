@@ -314,8 +314,9 @@ contains
     !> flags and counters in scalars (the third component is 0 in the plane, which changes
     !> no bit), the force written out with the operations of `kepler_field` and
     !> `kepler_field_gradient`. Bitwise the kernel's steps (`test/test_kernel_fused.pf`).
-    !> It stops before the first step whose checks fail (that step undone on scalars); the
-    !> kernel then takes it and reports the failure.
+    !> It stops before the first step whose checks fail: that step is undone on scalars
+    !> (the cached forces of its start computed again, uncounted: the same bits) and the
+    !> kernel takes it and reports the failure.
     subroutine kepler_model_advance(self, op, c, u, ks, q, v, w, h, nsteps, ndone)
         class(kepler_model_t), intent(inout) :: self              !! the model
         integer, intent(in), contiguous :: op(:)                  !! op codes of the stages
@@ -327,8 +328,8 @@ contains
         integer(ik), intent(in) :: nsteps                         !! steps wanted
         integer(ik), intent(out) :: ndone                         !! steps taken
         ! x position, y velocity, a force, g gradient term, e force at the shifted point p
-        real(wp), dimension(3) :: x, y, a, g, e, p, x0, y0, a0, g0, e0, p0
-        real(wp) :: mu, s, r, xs, xs0, shift
+        real(wp) :: x1, x2, x3, y1, y2, y3, a1, a2, a3, g1, g2, g3, e1, e2, e3, p1, p2, p3
+        real(wp) :: x01, x02, x03, y01, y02, y03, mu, s, r, xs, xs0, shift
         logical :: ha, hg, hx, ha0, hg0, hx0, ok
         integer(ik) :: i, nf, ng, nf0, ng0
         integer :: k, d
@@ -343,89 +344,122 @@ contains
             end if
         end if
         mu = self%mu
-        x = 0.0_wp; y = 0.0_wp; a = 0.0_wp; g = 0.0_wp; e = 0.0_wp; p = 0.0_wp
-        x(1:d) = q(:, 1); y(1:d) = v(:, 1)
+        x3 = 0.0_wp; y3 = 0.0_wp; a1 = 0.0_wp; a2 = 0.0_wp; a3 = 0.0_wp; g1 = 0.0_wp
+        g2 = 0.0_wp; g3 = 0.0_wp; e1 = 0.0_wp; e2 = 0.0_wp; e3 = 0.0_wp; p1 = 0.0_wp
+        p2 = 0.0_wp; p3 = 0.0_wp
+        x1 = q(1, 1); x2 = q(2, 1); y1 = v(1, 1); y2 = v(2, 1)
+        if (d == 3) then
+            x3 = q(3, 1); y3 = v(3, 1)
+        end if
         ha = ks%have_a; hg = ks%have_g; hx = ks%have_x; xs = ks%xshift
-        if (ha) a(1:d) = w(:, 1, ks%ia)
-        if (hg) g(1:d) = w(:, 1, ks%ig)
+        if (ha) call load(ks%ia, a1, a2, a3)
+        if (hg) call load(ks%ig, g1, g2, g3)
         if (hx) then
-            e(1:d) = w(:, 1, ks%iae); p(1:d) = w(:, 1, ks%iqe)
+            call load(ks%iae, e1, e2, e3); call load(ks%iqe, p1, p2, p3)
         end if
         nf = ks%nf; ng = ks%ng
         ok = .true.
         do i = 1, nsteps
-            x0 = x; y0 = y; a0 = a; g0 = g; e0 = e; p0 = p
+            x01 = x1; x02 = x2; x03 = x3; y01 = y1; y02 = y2; y03 = y3
             ha0 = ha; hg0 = hg; hx0 = hx; xs0 = xs; nf0 = nf; ng0 = ng
             do k = 1, size(op)
                 if (op(k) /= OP_DRIFT .and. .not. ha) then
-                    call field(-mu, x, x, a, ok)
+                    call field(-mu, x1, x2, x3, x1, x2, x3, a1, a2, a3, ok)
                     if (.not. ok) exit
                     ha = .true.; nf = nf + 1
                 end if
                 select case (op(k))
                 case (OP_DRIFT)
                     s = c(k) * h
-                    x = x + s * y
+                    x1 = x1 + s * y1; x2 = x2 + s * y2; x3 = x3 + s * y3
                     ha = .false.; hg = .false.; hx = .false.
                 case (OP_KICK)
                     s = c(k) * h
-                    y = y + s * a
+                    y1 = y1 + s * a1; y2 = y2 + s * a2; y3 = y3 + s * a3
                 case (OP_GRAD_KICK)
                     if (.not. hg) then
-                        call field(4.0_wp * mu, x, a, g, ok)
+                        call field(4.0_wp * mu, x1, x2, x3, a1, a2, a3, g1, g2, g3, ok)
                         if (.not. ok) exit
                         hg = .true.; ng = ng + 1
                     end if
                     s = c(k) * h
                     r = u(k) * h**3
-                    y = y + (s * a + r * g)
+                    y1 = y1 + (s * a1 + r * g1); y2 = y2 + (s * a2 + r * g2)
+                    y3 = y3 + (s * a3 + r * g3)
                 case (OP_EXTRAP_KICK)
                     shift = u(k) * h * h
                     if (.not. hx .or. xs /= shift) then
-                        p = x + shift * a
+                        p1 = x1 + shift * a1; p2 = x2 + shift * a2; p3 = x3 + shift * a3
                         xs = shift
-                        call field(-mu, p, p, e, ok)
+                        call field(-mu, p1, p2, p3, p1, p2, p3, e1, e2, e3, ok)
                         if (.not. ok) exit
                         hx = .true.; nf = nf + 1
                     end if
                     s = c(k) * h
-                    y = y + s * e
+                    y1 = y1 + s * e1; y2 = y2 + s * e2; y3 = y3 + s * e3
                 case default
                     continue      ! a validated scheme has no other op codes
                 end select
             end do
-            if (ok) ok = all(ieee_is_finite(x)) .and. all(ieee_is_finite(y))
+            if (ok) ok = ieee_is_finite(x1) .and. ieee_is_finite(x2) .and. ieee_is_finite(x3) &
+                         .and. ieee_is_finite(y1) .and. ieee_is_finite(y2) .and. ieee_is_finite(y3)
             if (.not. ok) then
-                ! leave this step to the kernel: back to its start
-                x = x0; y = y0; a = a0; g = g0; e = e0; p = p0
+                ! leave this step to the kernel: back to its start, cache as it was
+                x1 = x01; x2 = x02; x3 = x03; y1 = y01; y2 = y02; y3 = y03
                 ha = ha0; hg = hg0; hx = hx0; xs = xs0; nf = nf0; ng = ng0
+                if (ha) call field(-mu, x1, x2, x3, x1, x2, x3, a1, a2, a3, ok)
+                if (hg) call field(4.0_wp * mu, x1, x2, x3, a1, a2, a3, g1, g2, g3, ok)
+                if (hx) then
+                    p1 = x1 + xs * a1; p2 = x2 + xs * a2; p3 = x3 + xs * a3
+                    call field(-mu, p1, p2, p3, p1, p2, p3, e1, e2, e3, ok)
+                end if
                 exit
             end if
             ndone = i
         end do
-        q(:, 1) = x(1:d); v(:, 1) = y(1:d)
-        if (ha) then
-            w(:, 1, ks%ia) = a(1:d); w(:, 1, ks%iqlast) = x(1:d)
+        q(1, 1) = x1; q(2, 1) = x2; v(1, 1) = y1; v(2, 1) = y2
+        if (d == 3) then
+            q(3, 1) = x3; v(3, 1) = y3
         end if
-        if (hg) w(:, 1, ks%ig) = g(1:d)
+        if (ha) then
+            call store(ks%ia, a1, a2, a3); w(:, 1, ks%iqlast) = q(:, 1)
+        end if
+        if (hg) call store(ks%ig, g1, g2, g3)
         if (hx) then
-            w(:, 1, ks%iae) = e(1:d); w(:, 1, ks%iqe) = p(1:d)
+            call store(ks%iae, e1, e2, e3); call store(ks%iqe, p1, p2, p3)
         end if
         ks%have_a = ha; ks%have_g = hg; ks%have_x = hx; ks%xshift = xs
         ks%nf = nf; ks%ng = ng
+
+    contains
+
+        subroutine load(slot, z1, z2, z3)
+            integer, intent(in) :: slot
+            real(wp), intent(out) :: z1, z2, z3
+            z1 = w(1, 1, slot); z2 = w(2, 1, slot); z3 = 0.0_wp
+            if (d == 3) z3 = w(3, 1, slot)
+        end subroutine load
+
+        subroutine store(slot, z1, z2, z3)
+            integer, intent(in) :: slot
+            real(wp), intent(in) :: z1, z2, z3
+            w(1, 1, slot) = z1; w(2, 1, slot) = z2
+            if (d == 3) w(3, 1, slot) = z3
+        end subroutine store
+
     end subroutine kepler_model_advance
 
-    !> f = (cf / |r|^3) z with r^2 = x1^2 + x2^2 + x3^2 (the operations of `scaled_columns`);
-    !> `ok` false when f is not finite.
-    pure subroutine field(cf, r, z, f, ok)
-        real(wp), intent(in) :: cf, r(3), z(3)
-        real(wp), intent(out) :: f(3)
+    !> f = (cf / |r|^3) z with |r|^2 = r1^2 + r2^2 + r3^2 (the operations of
+    !> `scaled_columns`); `ok` false when f is not finite.
+    pure subroutine field(cf, r1, r2, r3, z1, z2, z3, f1, f2, f3, ok)
+        real(wp), intent(in) :: cf, r1, r2, r3, z1, z2, z3
+        real(wp), intent(out) :: f1, f2, f3
         logical, intent(out) :: ok
-        real(wp) :: r2, t
-        r2 = r(1)**2 + r(2)**2 + r(3)**2
-        t = cf / (r2 * sqrt(r2))
-        f = t * z
-        ok = ieee_is_finite(f(1)) .and. ieee_is_finite(f(2)) .and. ieee_is_finite(f(3))
+        real(wp) :: rr, t
+        rr = r1**2 + r2**2 + r3**2
+        t = cf / (rr * sqrt(rr))
+        f1 = t * z1; f2 = t * z2; f3 = t * z3
+        ok = ieee_is_finite(f1) .and. ieee_is_finite(f2) .and. ieee_is_finite(f3)
     end subroutine field
 
     !> The Kepler model provides the gradient term.
