@@ -18,28 +18,10 @@ contains
         seconds_since = real(t1 - t0, wp) / real(rate, wp)
     end function seconds_since
 
-    !> Median of the values (sorted copy; mean of the middle two for an even count).
+    !> Median of the values (the mean of the middle two for an even count).
     pure real(wp) function median(x)
         real(wp), intent(in) :: x(:)   !! values
-        real(wp) :: y(size(x)), t
-        integer :: i, j, m
-        y = x
-        do i = 2, size(y)
-            t = y(i); j = i - 1
-            do while (j >= 1)
-                if (y(j) <= t) exit
-                y(j + 1) = y(j); j = j - 1
-            end do
-            y(j + 1) = t
-        end do
-        m = size(y)
-        if (m == 0) then
-            median = 0.0_wp
-        else if (mod(m, 2) == 1) then
-            median = y((m + 1) / 2)
-        else
-            median = 0.5_wp * (y(m / 2) + y(m / 2 + 1))
-        end if
+        median = quantile(x, 0.5_wp)
     end function median
 
     !> The p-quantile of the values (0 <= p <= 1; linear between order statistics).

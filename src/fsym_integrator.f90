@@ -210,9 +210,10 @@ contains
         end if
         step0 = self%steps()
         nfused = 0
-        if (.not. present(recorder) .and. .not. self%ks%active) &
+        if (.not. present(recorder) .and. .not. self%ks%active) then
             call model%advance(self%sc%op, self%sc%c, self%sc%u, self%ks, q, v, self%w, h, &
                                nsteps, nfused)
+        end if
         call fsym_kernel_run(self%sc%op, self%sc%c, self%sc%u, model, self%ks, q, v, self%w, h, &
                              nsteps - nfused, ndone, st, recorder, step0 + nfused)
         ndone = ndone + nfused

@@ -3,13 +3,14 @@
 !> its own force routines. The modern integrator, the F77 face (its EXTERNAL routines in a
 !> small model type), the reverse-communication face and the C face all run this code.
 !>
-!> The state is `kernel_state_t` (`fsym_kernel_state`): named slot indices into a caller-owned work array
-!> `w(d, n, nslot)`, the force cache, the step in progress and the evaluation counters.
-!> A step never allocates and does no I/O. It either completes or leaves q, v (and the
-!> compensation terms) bitwise as they were on entry: every force and every new state is
-!> checked for NaN/Inf, and a model's non-zero `stat` undoes the step. First-same-as-last:
-!> the force at the end of a step stays valid and is reused by the next step when q was not
-!> moved in between (checked bitwise against the q it was computed at).
+!> The state is `kernel_state_t` (`fsym_kernel_state`): named slot indices into a
+!> caller-owned work array `w(d, n, nslot)`, the force cache, the step in progress and the
+!> evaluation counters. A step never allocates and does no I/O. It either completes or
+!> leaves q, v (and the compensation terms) bitwise as they were on entry: every force and
+!> every new state is checked for NaN/Inf, and a model's non-zero `stat` undoes the step.
+!> First-same-as-last: the force at the end of a step stays valid and is reused by the
+!> next step when q was not moved in between (checked bitwise against the q it was
+!> computed at).
 !>
 !> Resumable form: a model whose evaluation sets `stat = KERNEL_SUSPEND` stops the kernel
 !> in the middle of the step (nothing undone); `ks%req` says which force the caller must put
