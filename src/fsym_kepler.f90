@@ -309,8 +309,8 @@ contains
         end do
     end subroutine scaled_columns
 
-    !> The fused one-body stepper (see `force_model_t%advance`): one body in d = 2 or 3,
-    !> without compensation, runs the scheme's stage table with its state, forces, cache
+    !> The fused stepper (see `force_model_t%advance`), d = 2 or 3, without compensation.
+    !> More than one body: `advance_blocks`. One body runs the scheme's stage table with its state, forces, cache
     !> flags and counters in scalars (the third component is 0 in the plane, which changes
     !> no bit), the force written out with the operations of `kepler_field` and
     !> `kepler_field_gradient`. Bitwise the kernel's steps (`test/test_kernel_fused.pf`).
@@ -335,7 +335,11 @@ contains
         integer :: k, d
         ndone = 0
         d = ks%d
-        if (ks%n /= 1 .or. (d /= 2 .and. d /= 3) .or. ks%comp .or. ks%active) return
+        if ((d /= 2 .and. d /= 3) .or. ks%comp .or. ks%active) return
+        if (ks%n > 1) then
+            call advance_blocks(self%mu, op, c, u, ks, q, v, w, h, nsteps, ndone)
+            return
+        end if
         if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) return
         if (.not. (all(ieee_is_finite(q)) .and. all(ieee_is_finite(v)))) return
         if (ks%have_a) then
@@ -448,6 +452,148 @@ contains
         end subroutine store
 
     end subroutine kepler_model_advance
+
+    !> The fused stepper for n > 1 bodies: blocks of `FIELD_BLOCK` bodies, each taking all
+    !> the steps in local arrays (the bodies are independent) with the stages as loops over
+    !> the block (they vectorise), the force written out with the operations of
+    !> `scaled_columns`. All or nothing: when any check fails, q, v and the cache are put
+    !> back as they were on entry (the cached forces computed again, uncounted: the same
+    !> bits) and no step is taken, so the kernel takes them all and reports the failure.
+    subroutine advance_blocks(mu, op, c, u, ks, q, v, w, h, nsteps, ndone)
+        real(wp), intent(in) :: mu
+        integer, intent(in), contiguous :: op(:)
+        real(wp), intent(in), contiguous :: c(:), u(:)
+        type(kernel_state_t), intent(inout) :: ks
+        real(wp), intent(inout) :: q(ks%d, ks%n), v(ks%d, ks%n), w(ks%d, ks%n, ks%nslot)
+        real(wp), intent(in) :: h
+        integer(ik), intent(in) :: nsteps
+        integer(ik), intent(out) :: ndone
+        real(wp), dimension(FIELD_BLOCK, 3) :: x, y, a, g, e, p
+        real(wp) :: s, r, xs, shift
+        logical :: ha, hg, hx, ok
+        integer(ik) :: i, nf, ng
+        integer :: d, n, j0, m, k, l
+        d = ks%d; n = ks%n
+        ndone = 0
+        if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) return
+        if (.not. (all(ieee_is_finite(q)) .and. all(ieee_is_finite(v)))) return
+        if (ks%have_a) then
+            if (any(q /= w(:, :, ks%iqlast))) then
+                ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
+            end if
+        end if
+        w(:, :, ks%iq0) = q; w(:, :, ks%iv0) = v
+        ok = .true.
+        x = 0.0_wp; y = 0.0_wp; a = 0.0_wp; g = 0.0_wp; e = 0.0_wp; p = 0.0_wp
+        do j0 = 0, n - 1, FIELD_BLOCK
+            m = min(FIELD_BLOCK, n - j0)
+            ha = ks%have_a; hg = ks%have_g; hx = ks%have_x; xs = ks%xshift
+            nf = ks%nf; ng = ks%ng
+            do l = 1, d
+                x(1:m, l) = q(l, j0 + 1:j0 + m); y(1:m, l) = v(l, j0 + 1:j0 + m)
+                if (ha) a(1:m, l) = w(l, j0 + 1:j0 + m, ks%ia)
+                if (hg) g(1:m, l) = w(l, j0 + 1:j0 + m, ks%ig)
+                if (hx) e(1:m, l) = w(l, j0 + 1:j0 + m, ks%iae)
+                if (hx) p(1:m, l) = w(l, j0 + 1:j0 + m, ks%iqe)
+            end do
+            steps: do i = 1, nsteps
+                do k = 1, size(op)
+                    if (op(k) /= OP_DRIFT .and. .not. ha) then
+                        call block_field(-mu, m, d, x, x, a, ok)
+                        if (.not. ok) exit steps
+                        ha = .true.; nf = nf + 1
+                    end if
+                    select case (op(k))
+                    case (OP_DRIFT)
+                        s = c(k) * h
+                        x(1:m, 1:d) = x(1:m, 1:d) + s * y(1:m, 1:d)
+                        ha = .false.; hg = .false.; hx = .false.
+                    case (OP_KICK)
+                        s = c(k) * h
+                        y(1:m, 1:d) = y(1:m, 1:d) + s * a(1:m, 1:d)
+                    case (OP_GRAD_KICK)
+                        if (.not. hg) then
+                            call block_field(4.0_wp * mu, m, d, x, a, g, ok)
+                            if (.not. ok) exit steps
+                            hg = .true.; ng = ng + 1
+                        end if
+                        s = c(k) * h
+                        r = u(k) * h**3
+                        y(1:m, 1:d) = y(1:m, 1:d) + (s * a(1:m, 1:d) + r * g(1:m, 1:d))
+                    case (OP_EXTRAP_KICK)
+                        shift = u(k) * h * h
+                        if (.not. hx .or. xs /= shift) then
+                            p(1:m, 1:d) = x(1:m, 1:d) + shift * a(1:m, 1:d)
+                            xs = shift
+                            call block_field(-mu, m, d, p, p, e, ok)
+                            if (.not. ok) exit steps
+                            hx = .true.; nf = nf + 1
+                        end if
+                        s = c(k) * h
+                        y(1:m, 1:d) = y(1:m, 1:d) + s * e(1:m, 1:d)
+                    case default
+                        continue      ! a validated scheme has no other op codes
+                    end select
+                end do
+                ok = all(ieee_is_finite(x(1:m, 1:d))) .and. all(ieee_is_finite(y(1:m, 1:d)))
+                if (.not. ok) exit steps
+            end do steps
+            if (.not. ok) exit
+            do l = 1, d
+                q(l, j0 + 1:j0 + m) = x(1:m, l); v(l, j0 + 1:j0 + m) = y(1:m, l)
+                if (ha) w(l, j0 + 1:j0 + m, ks%ia) = a(1:m, l)
+                if (hg) w(l, j0 + 1:j0 + m, ks%ig) = g(1:m, l)
+                if (hx) w(l, j0 + 1:j0 + m, ks%iae) = e(1:m, l)
+                if (hx) w(l, j0 + 1:j0 + m, ks%iqe) = p(1:m, l)
+            end do
+        end do
+        if (.not. ok) then
+            ! all or nothing: the entry state and its cache (same bits), nothing counted
+            q = w(:, :, ks%iq0); v = w(:, :, ks%iv0)
+            if (ks%have_a) call scaled_columns(d, n, -mu, q, q, w(:, :, ks%ia))
+            if (ks%have_g) call scaled_columns(d, n, 4.0_wp * mu, q, w(:, :, ks%ia), &
+                                               w(:, :, ks%ig))
+            if (ks%have_x) then
+                w(:, :, ks%iqe) = q + ks%xshift * w(:, :, ks%ia)
+                call scaled_columns(d, n, -mu, w(:, :, ks%iqe), w(:, :, ks%iqe), w(:, :, ks%iae))
+            end if
+            return
+        end if
+        ks%have_a = ha; ks%have_g = hg; ks%have_x = hx; ks%xshift = xs
+        ks%nf = nf; ks%ng = ng
+        if (ha) w(:, :, ks%iqlast) = q
+        ndone = nsteps
+    end subroutine advance_blocks
+
+    !> f = (cf / |r|^3) z for the m bodies of a block (the operations of `scaled_columns`);
+    !> `ok` false when any f is not finite.
+    pure subroutine block_field(cf, m, d, r, z, f, ok)
+        real(wp), intent(in) :: cf
+        integer, intent(in) :: m, d
+        real(wp), intent(in) :: r(FIELD_BLOCK, 3), z(FIELD_BLOCK, 3)
+        real(wp), intent(inout) :: f(FIELD_BLOCK, 3)
+        logical, intent(out) :: ok
+        real(wp) :: t(FIELD_BLOCK)
+        integer :: j, l
+        if (d == 2) then
+            do j = 1, m
+                t(j) = r(j, 1)**2 + r(j, 2)**2
+            end do
+        else
+            do j = 1, m
+                t(j) = r(j, 1)**2 + r(j, 2)**2 + r(j, 3)**2
+            end do
+        end if
+        do j = 1, m
+            t(j) = cf / (t(j) * sqrt(t(j)))
+        end do
+        do l = 1, d
+            do j = 1, m
+                f(j, l) = t(j) * z(j, l)
+            end do
+        end do
+        ok = all(ieee_is_finite(f(1:m, 1:d)))
+    end subroutine block_field
 
     !> f = (cf / |r|^3) z with |r|^2 = r1^2 + r2^2 + r3^2 (the operations of
     !> `scaled_columns`); `ok` false when f is not finite.
