@@ -7,7 +7,7 @@ module fsym_integrator
     use fsym_force, only: force_model_t, recorder_t
     use fsym_stepper, only: stepper_t, observer_t
     use fsym_kernel, only: kernel_state_t, fsym_kernel_layout, fsym_kernel_run, &
-                           fsym_kernel_invalidate
+                           fsym_kernel_invalidate, fsym_kernel_abort, KERNEL_SUSPEND
     implicit none
     private
 
@@ -216,6 +216,11 @@ contains
         end if
         call fsym_kernel_run(self%sc%op, self%sc%c, self%sc%u, model, self%ks, q, v, self%w, h, &
                              nsteps - nfused, ndone, st, recorder, step0 + nfused)
+        if (st == KERNEL_SUSPEND) then
+            ! a model's stat that happens to be the kernel's suspend code is a failure here
+            call fsym_kernel_abort(self%ks, q, v, self%w)
+            st = FSYM_ERR_MODEL
+        end if
         ndone = ndone + nfused
         nf = self%ks%nf; ng = self%ks%ng
         call self%counters(nf, ng, 1)

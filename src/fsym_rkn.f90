@@ -104,7 +104,7 @@ contains
     contains
 
         subroutine evaluate(x, f, stage)
-            real(wp), intent(in) :: x(:, :)
+            real(wp), intent(in), contiguous :: x(:, :)
             real(wp), intent(out), contiguous :: f(:, :)
             integer, intent(in) :: stage
             mst = 0
