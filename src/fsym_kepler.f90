@@ -310,9 +310,9 @@ contains
     end subroutine scaled_columns
 
     !> The fused stepper (see `force_model_t%advance`), d = 2 or 3, without compensation.
-    !> More than one body: `advance_blocks`. One body runs the scheme's stage table with its state, forces, cache
-    !> flags and counters in scalars (the third component is 0 in the plane, which changes
-    !> no bit), the force written out with the operations of `kepler_field` and
+    !> More than one body: `advance_blocks`. One body runs the scheme's stage table with its
+    !> state, forces, cache flags and counters in scalars (the third component is 0 in the
+    !> plane, which changes no bit), the force written out with the operations of `kepler_field` and
     !> `kepler_field_gradient`. Bitwise the kernel's steps (`test/test_kernel_fused.pf`).
     !> It stops before the first step whose checks fail: that step is undone on scalars
     !> (the cached forces of its start computed again, uncounted: the same bits) and the
