@@ -64,18 +64,26 @@ cat >> "$tmp" <<'NOTES'
 
 - One kernel (`src/fsym_kernel.f90`) runs every model: a loop over steps with the loop over
   the stage table inside, the model called directly through its type-bound procedures. It
-  has no model-specific path; the built-in Kepler model's speed comes from its own force
-  routines (contiguous arrays, vectorised loops in any d).
-- Per step the kernel saves q and v (a failing step is undone bitwise), checks every force
-  and the new state for NaN/Inf, and keeps the first-same-as-last force. The hand loops
-  (`app/fsym_handloops.f90`) do none of this; `run/hand` is the price of those promises
-  plus the stage-table interpretation.
-- `inlined/hand` compares with loops that keep each body's state in registers through all
-  stages of a step and write the force out (no calls, no array passes): the kernel passes
-  over whole arrays once per stage, which costs memory traffic that the fused loop avoids.
+  has no model-specific path. Per step it saves q and v (a failing step is undone bitwise),
+  checks every force and the new state for NaN/Inf and keeps the first-same-as-last force;
+  the hand loops (`app/fsym_handloops.f90`) do none of this. `model=user` lines measure
+  that price: the user's model through the kernel against the same model calls by hand.
+- `model=builtin`: the library's `kepler_model_t` has a fused stepper of its own
+  (`kepler_model_t%advance`, in `src/fsym_kepler.f90`, offered the steps by
+  `integrator_t%run` before the kernel): one body on scalars, more bodies in blocks of 64 in
+  local arrays, the same stage table, bitwise the kernel's steps
+  (`test/test_kernel_fused.pf`). It is why `run/hand` is below 1 there: the hand loop makes
+  the model calls, the fused stepper does not.
+- `inlined/hand`: the library with the built-in model against loops that keep each body's
+  state in registers through all stages and have the stage sequence compiled in. The fused
+  stepper interprets the stage table; for one body that costs nothing measurable, for
+  1000 bodies the stage loops over a block of 64 in memory cost 1.0-1.8x in these runs.
 - `step/hand`: each `step` call pays the checks a call must make (initialised? shapes? the
-  cached force still valid for this q? h finite? the state finite on entry?) on top of the
-  step; use `run` (with an observer every k steps if the state is needed in between).
+  cached force still valid for this q? h finite? the state finite on entry?) and, with the
+  built-in model at n = 1000, the fused stepper's set-up for a single step; use `run` (with
+  an observer every k steps if the state is needed in between).
+- The machine is shared (2 cores, other jobs running): single ratios move by 10-30 % from
+  run to run; the spread column says how much.
 - Time per step outside the force is the kernel's O(n) work; for the N-body force it is
   O(N) against the force's O(N^2).
 NOTES
