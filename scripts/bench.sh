@@ -5,8 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/setup.sh
-FLAGS="-O3 -march=native -funroll-loops -std=f2008"
-VGFLAGS="-O2 -g -std=f2008"      # valgrind does not know every -march=native instruction
+FLAGS="-O3 -march=native -funroll-loops -std=f2008 -ffp-contract=off"
+VGFLAGS="-O2 -g -std=f2008 -ffp-contract=off"      # valgrind does not know every -march=native instruction
 out=doc/benchmarks.md
 tmp=$(mktemp)
 trap 'rm -f "$tmp" "$tmp".*' EXIT
