@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The test command: installs what is missing, builds, and runs every test.
 #  1. the real clients (F77, C, CMake consumer) built against the installed library
-#     (test/clients/run.sh; the script fails on any mismatch with the modern API);
+#     (test/clients/run.sh; the script fails on any mismatch with the modern API), and an fpm
+#     consumer that must link neither LAPACK nor HDF5 (test/clients/fpm_consumer/check.sh);
 #  2. the Fortran suites: fsym-tests (library), fsym-study-tests (the study modules of app/)
 #     and fsym-h5-tests (the programs' HDF5 layer).
 # The last line sums the suites: `total: N passed, N failed`. Extra arguments (a test-name
@@ -11,6 +12,7 @@ cd "$(dirname "$0")/.."
 source scripts/setup.sh
 flags="-std=f2008 -g -O1 -fcheck=bounds,pointer -fbacktrace -ffp-contract=off"
 bash test/clients/run.sh
+bash test/clients/fpm_consumer/check.sh
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 rc=0
