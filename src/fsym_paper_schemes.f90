@@ -110,7 +110,9 @@ contains
         integer, allocatable :: op(:)
         real(wp), allocatable :: c(:), u(:)
         integer :: second, k, ist
-        allocate (op(size(x) + size(y)), c(size(x) + size(y)), u(size(x) + size(y)), stat=ist)
+        allocate (op(size(x) + size(y)), stat=ist)
+        if (ist == 0) allocate (c(size(x) + size(y)), stat=ist)
+        if (ist == 0) allocate (u(size(x) + size(y)), stat=ist)
         if (ist /= 0) then
             call fsym_report(FSYM_ERR_NO_MEMORY, 'scheme '//trim(name)//': stage table', &
                              stat, errmsg)
@@ -154,7 +156,8 @@ contains
                                     stat, errmsg)
             return
         end if
-        allocate (x(m + 1), y(m), stat=ist)
+        allocate (x(m + 1), stat=ist)
+        if (ist == 0) allocate (y(m), stat=ist)
         if (ist /= 0) then
             call fsym_report(FSYM_ERR_NO_MEMORY, 'scheme '//trim(name)//': stage table', &
                              stat, errmsg)
@@ -251,7 +254,9 @@ contains
             return
         end if
         ns = 2 * n - 1
-        allocate (op(ns), c(ns), u(ns), stat=ist)
+        allocate (op(ns), stat=ist)
+        if (ist == 0) allocate (c(ns), stat=ist)
+        if (ist == 0) allocate (u(ns), stat=ist)
         if (ist /= 0) then
             call fsym_report(FSYM_ERR_NO_MEMORY, 'AN stage table', stat, errmsg)
             return

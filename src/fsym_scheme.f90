@@ -115,7 +115,9 @@ contains
         end if
 
         allocate (character(len=len_trim(name)) :: s%name, stat=ist)
-        if (ist == 0) allocate (s%op(n), s%c(n), s%u(n), stat=ist)
+        if (ist == 0) allocate (s%op(n), stat=ist)
+        if (ist == 0) allocate (s%c(n), stat=ist)
+        if (ist == 0) allocate (s%u(n), stat=ist)
         if (ist /= 0) then
             write (buf, '(i0)') n
             call fsym_report(FSYM_ERR_NO_MEMORY, 'scheme '//trim(name)//': a table of '// &
@@ -248,7 +250,9 @@ contains
         m = len(from%name)
         if (grad) m = m + 1
         allocate (character(len=m) :: s%name, stat=ist)
-        if (ist == 0) allocate (s%op(n), s%c(n), s%u(n), stat=ist)
+        if (ist == 0) allocate (s%op(n), stat=ist)
+        if (ist == 0) allocate (s%c(n), stat=ist)
+        if (ist == 0) allocate (s%u(n), stat=ist)
         if (ist /= 0) then
             call fsym_report(FSYM_ERR_NO_MEMORY, 'scheme '//from%name// &
                              ': no memory for its extrapolated form', stat, errmsg)
