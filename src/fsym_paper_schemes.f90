@@ -194,9 +194,7 @@ contains
         type(scheme_t) :: s
         integer :: st
         call build_a(s, st)
-        if (present(extrapolated)) then
-            if (extrapolated .and. st == FSYM_SUCCESS) call prime_in_place(s, st)
-        end if
+        call prime_if(s, st, extrapolated)
     end function fsym_scheme_a
 
     subroutine build_a(s, st)
@@ -216,9 +214,7 @@ contains
         type(scheme_t) :: s
         integer :: st
         call build_c(s, st)
-        if (present(extrapolated)) then
-            if (extrapolated .and. st == FSYM_SUCCESS) call prime_in_place(s, st)
-        end if
+        call prime_if(s, st, extrapolated)
     end function fsym_scheme_c
 
     subroutine build_c(s, st)
@@ -275,15 +271,24 @@ contains
         u(1) = c(1) / (24.0_wp * (n - 2)); u(ns) = u(1)
         write (label, '(a,i0)') 'A', n
         call fsym_scheme_custom(trim(label), op, c, u, 4, s, st, msg)
-        if (st == FSYM_SUCCESS .and. present(extrapolated)) then
-            if (extrapolated) call prime_in_place(s, st, msg)
-        end if
+        call prime_if(s, st, extrapolated, msg)
         if (st /= FSYM_SUCCESS) then
             call fsym_pass(st, msg, stat, errmsg); return
         end if
         call fsym_scheme_take(s, scheme)
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine fsym_scheme_an
+
+    !> Replace `s` by its extrapolated form when `extrapolated` is present and true and `st`
+    !> says that `s` was built.
+    subroutine prime_if(s, st, extrapolated, msg)
+        type(scheme_t), intent(inout) :: s
+        integer, intent(inout) :: st
+        logical, intent(in), optional :: extrapolated
+        character(len=*), intent(inout), optional :: msg
+        if (st /= FSYM_SUCCESS .or. .not. present(extrapolated)) return
+        if (extrapolated) call prime_in_place(s, st, msg)
+    end subroutine prime_if
 
     !> Replace `s` by its extrapolated form (`s` unchanged on failure).
     subroutine prime_in_place(s, st, msg)
