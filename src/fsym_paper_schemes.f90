@@ -300,6 +300,12 @@ contains
         if (st == FSYM_SUCCESS) call fsym_scheme_take(e, s)
     end subroutine prime_in_place
 
+    !> `FSYM_LABEL_LEN` as text.
+    pure function label_len_text() result(t)
+        character(len=12) :: t
+        write (t, '(i0)') FSYM_LABEL_LEN
+    end function label_len_text
+
     !> `FSYM_AN_MAX` as text.
     pure function an_max_text() result(t)
         character(len=12) :: t
@@ -542,7 +548,8 @@ contains
         call normalize(name, key, nk, fits)
         if (.not. fits) then
             call fsym_report(FSYM_ERR_UNKNOWN_METHOD, '"'//trim(shown)//'": longer than '// &
-                             'any label (at most 64 characters without blanks)', stat, errmsg)
+                             'any label (at most '//trim(label_len_text())// &
+                             ' characters without blanks)', stat, errmsg)
             return
         end if
         prime = .false.

@@ -12,6 +12,12 @@
 !> * `OP_EXTRAP_KICK`  v <- v + c h a(q + u h^2 a(q))   (the gradient term by extrapolation)
 !>
 !> The tables know nothing of Hamiltonians: they can drive any pair of flows e^{hT}, e^{hV}.
+!> The stage semantics are those of S. A. Chin, *Forward and non-forward symplectic
+!> integrators in solving classical dynamics problems*, Int. J. Comput. Math. 84(6), 729-747
+!> (2007), doi:10.1080/00207160701458476, arXiv:0704.3273: the gradient kick is the classical
+!> form of the double commutator [V,[T,V]] (S. A. Chin, Phys. Lett. A 226(6), 344-348 (1997),
+!> doi:10.1016/S0375-9601(97)00003-0), and the extrapolated kick replaces it to O(h^5) as in
+!> the paper's A'.
 !> Every array is allocated with `stat=`: a table too large for memory is reported as
 !> `FSYM_ERR_NO_MEMORY`, never as an abort. Character results have lengths fixed by
 !> specification expressions (no hidden static buffer), so the module is thread-safe.
