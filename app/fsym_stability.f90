@@ -11,7 +11,9 @@
 program fsym_stability_study
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use fsym
-    use fsym_stability
+    use fsym_linear_stability
+    use fsym_fpu
+    use fsym_stability_runs
     use fsym_h5, only: h5_file_t
     implicit none
 

@@ -10,5 +10,5 @@ args=("$@")
 for ((i = 0; i < ${#args[@]}; i++)); do
     if [ "${args[$i]}" = "--out" ] && [ $((i + 1)) -lt ${#args[@]} ]; then out=${args[$((i + 1))]}; fi
 done
-fpm run --profile release --flag "-std=f2008 -O3" fsym-study -- "$@"
+fpm run --profile release --flag "-std=f2008 -O3 -ffp-contract=off" fsym-study -- "$@"
 "$FSYM_PYTHON" scripts/plot_figures.py "$out" doc/figures

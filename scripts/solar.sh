@@ -5,4 +5,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/setup.sh
 mkdir -p out doc
-fpm run --profile release --flag "-std=f2008 -O2" fsym-solar -- "$@"
+fpm run --profile release --flag "-std=f2008 -O2 -ffp-contract=off" fsym-solar -- "$@"

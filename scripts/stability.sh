@@ -6,6 +6,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 FSYM_PLOTS=1 source scripts/setup.sh
 mkdir -p out doc/figures
-fpm run --profile release --flag "-std=f2008 -O3" fsym-stability -- --out out/stability.h5 \
+fpm run --profile release --flag "-std=f2008 -O3 -ffp-contract=off" fsym-stability -- --out out/stability.h5 \
     --doc doc/stability.md "$@"
 "$FSYM_PYTHON" scripts/plot_stability.py out/stability.h5 doc/figures

@@ -1,19 +1,23 @@
 #!/usr/bin/env bash
 # The test command: installs what is missing, builds, and runs every test.
 #  1. the real clients (F77, C, CMake consumer) built against the installed library
-#     (test/clients/run.sh; the script fails on any mismatch with the modern API);
-#  2. the Fortran suites: fsym-tests (library) and fsym-h5-tests (the programs' HDF5 layer).
+#     (test/clients/run.sh; the script fails on any mismatch with the modern API), and an fpm
+#     consumer that must link neither LAPACK nor HDF5 (test/clients/fpm_consumer/check.sh);
+#  2. the Fortran suites: fsym-tests (library), fsym-study-tests (the study modules of app/)
+#     and fsym-h5-tests (the programs' HDF5 layer).
 # The last line sums the suites: `total: N passed, N failed`. Extra arguments (a test-name
 # filter) go to the library suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/setup.sh
-flags="-std=f2008 -g -O1 -fcheck=bounds,pointer -fbacktrace"
+flags="-std=f2008 -g -O1 -fcheck=bounds,pointer -fbacktrace -ffp-contract=off"
 bash test/clients/run.sh
+bash test/clients/fpm_consumer/check.sh
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 rc=0
 fpm test --flag "$flags" fsym-tests -- "$@" 2>&1 | tee "$log" || rc=1
+fpm test --flag "$flags" fsym-study-tests 2>&1 | tee -a "$log" || rc=1
 fpm test --flag "$flags" fsym-h5-tests 2>&1 | tee -a "$log" || rc=1
 pass=$(awk '/^[0-9]+ passed, [0-9]+ failed$/ {p += $1} END {print p + 0}' "$log")
 fail=$(awk '/^[0-9]+ passed, [0-9]+ failed$/ {f += $3} END {print f + 0}' "$log")

@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 FSYM_PLOTS=1 source scripts/setup.sh
-FLAGS="-O3 -march=native -funroll-loops -std=f2008"
+FLAGS="-O3 -march=native -funroll-loops -std=f2008 -ffp-contract=off"
 cpu=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')
 hw="$cpu, $(nproc) cores available"
 comp=$(gfortran --version | head -1)

@@ -4,6 +4,7 @@ module fsym
     use fsym_kinds, only: wp, ik
     use fsym_status
     use fsym_scheme
+    use fsym_paper_schemes
     use fsym_force
     use fsym_stepper
     use fsym_integrator
@@ -14,11 +15,9 @@ module fsym
     use fsym_nbody
     use fsym_trace
     use fsym_analysis
-    use fsym_fpu
-    use fsym_stability_runs
     use fsym_diagnostics
-    ! fsym_stability (linear stability through LAPACK) is not re-exported here, so that
-    ! `use fsym` never needs LAPACK: use it by name.
+    ! The studies (linear stability through LAPACK, FPU chains, stability runs) are not part
+    ! of the library: they live beside the programs in app/.
     implicit none
     public
 

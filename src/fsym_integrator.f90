@@ -3,7 +3,8 @@
 module fsym_integrator
     use fsym_kinds, only: wp, ik
     use fsym_status
-    use fsym_scheme, only: scheme_t, fsym_scheme_custom, fsym_scheme_by_name, fsym_op_name
+    use fsym_scheme, only: scheme_t, fsym_scheme_custom, fsym_op_name
+    use fsym_paper_schemes, only: fsym_scheme_by_name
     use fsym_force, only: force_model_t, recorder_t
     use fsym_stepper, only: stepper_t, observer_t
     use fsym_kernel, only: kernel_state_t, fsym_kernel_layout, fsym_kernel_run, &

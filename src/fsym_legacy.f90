@@ -17,7 +17,8 @@
 !> or 0 when the name is not a catalogue method. Case and the spelling of the prime are free
 !> (`A'`, `a prime`).
 subroutine FSYMID(NAME, METH)
-    use fsym_scheme, only: scheme_t, fsym_scheme_by_name, fsym_catalogue, FSYM_NAME_LEN
+    use fsym_scheme, only: scheme_t
+    use fsym_paper_schemes, only: fsym_scheme_by_name, fsym_catalogue, FSYM_NAME_LEN
     implicit none
     character(len=*), intent(in) :: NAME   !! method label
     integer, intent(out) :: METH           !! catalogue index, 0 if unknown
@@ -55,7 +56,8 @@ subroutine FSYMIN(METH, ND, N, RW, LRW, IW, LIW, INFO)
     use fsym_legacy_work, only: legacy_sizes, legacy_store, LEGACY_MAGIC, LEGACY_KO, LEGACY_KC
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_WORK_SIZE
     use fsym_kinds, only: wp
-    use fsym_scheme, only: scheme_t, fsym_scheme_by_name, fsym_catalogue, FSYM_NAME_LEN
+    use fsym_scheme, only: scheme_t
+    use fsym_paper_schemes, only: fsym_scheme_by_name, fsym_catalogue, FSYM_NAME_LEN
     use fsym_kernel, only: kernel_state_t, fsym_kernel_layout
     implicit none
     integer, intent(in) :: METH          !! method id (FSYMID)

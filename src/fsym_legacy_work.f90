@@ -13,7 +13,8 @@
 module fsym_legacy_work
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_UNKNOWN_METHOD, FSYM_ERR_SHAPE
     use fsym_kinds, only: wp, ik
-    use fsym_scheme, only: scheme_t, fsym_scheme_by_name, fsym_catalogue, FSYM_NAME_LEN
+    use fsym_scheme, only: scheme_t
+    use fsym_paper_schemes, only: fsym_scheme_by_name, fsym_catalogue, FSYM_NAME_LEN
     use fsym_force, only: force_model_t
     use fsym_kernel, only: kernel_state_t, fsym_kernel_layout, KERNEL_SUSPEND
     use fsym_legacy_api, only: fsym_legacy_accel, fsym_legacy_grad

@@ -3,7 +3,7 @@
 module fsym_methods
     use fsym_kinds, only: wp
     use fsym_status
-    use fsym_scheme, only: fsym_catalogue, FSYM_NAME_LEN
+    use fsym_paper_schemes, only: fsym_catalogue, FSYM_NAME_LEN
     use fsym_force, only: force_model_t
     use fsym_stepper, only: stepper_t
     use fsym_integrator, only: integrator_t

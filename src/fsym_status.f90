@@ -1,6 +1,13 @@
 !> Status codes returned by every public procedure, their messages, and the one place where
 !> an error is reported to a caller (through `stat`/`errmsg`) or, if the caller asked for no
 !> status, ends the program with the message.
+!>
+!> Thread-safe: no procedure here keeps state, and no character function result has a
+!> deferred length (gfortran keeps the length of such a result in a static variable of the
+!> caller, which threads would share). Texts come from constant tables; the functions that
+!> return text have their exact length given by a specification function
+!> (`fsym_status_message_len`, `fsym_int_text_len`), and `fsym_report` writes straight into
+!> the caller's `errmsg`, allocating nothing.
 module fsym_status
     use, intrinsic :: iso_fortran_env, only: error_unit
     use fsym_kinds, only: ik
@@ -45,65 +52,102 @@ module fsym_status
         !! Reverse communication was resumed out of order.
     integer, parameter, public :: FSYM_ERR_LAPACK = 18
         !! A LAPACK routine returned a non-zero info.
-    integer, parameter, public :: FSYM_ERR_LAST = 18
+    integer, parameter, public :: FSYM_ERR_NO_MEMORY = 19
+        !! An allocation failed (e.g. a method table too large for memory).
+    integer, parameter, public :: FSYM_ERR_LAST = 19
         !! Largest status code in use.
+    integer, parameter, public :: FSYM_STATUS_MSG_LEN = 48
+        !! Longest text of `fsym_status_message` (a buffer of this length always holds it).
 
-    public :: fsym_status_message, fsym_report, fsym_pass, fsym_int_text
+    public :: fsym_status_message, fsym_status_message_len, fsym_report, fsym_pass
+    public :: fsym_int_text, fsym_int_text_len
 
-    !> Decimal text of an integer (default kind or `ik`), for messages and labels.
+    !> The short text of each status code; the last entry is for unknown codes.
+    character(len=FSYM_STATUS_MSG_LEN), parameter :: texts(0:FSYM_ERR_LAST + 1) = &
+        [character(len=FSYM_STATUS_MSG_LEN) :: &
+         'success', &
+         'unknown method name', &
+         'parameter outside the family''s domain', &
+         'inconsistent scheme', &
+         'time step is zero, NaN or infinite', &
+         'state holds NaN or Inf', &
+         'force model returned NaN or Inf', &
+         'array shape mismatch', &
+         'scheme needs a gradient the force model lacks', &
+         'object used before a successful init', &
+         'work array too short', &
+         'force model reported a failure', &
+         'orbit is not a bound ellipse', &
+         'iteration did not converge', &
+         'input/output error', &
+         'buffer capacity exceeded', &
+         'force model provides no potential', &
+         'reverse communication resumed out of order', &
+         'LAPACK routine failed', &
+         'out of memory', &
+         'unknown status code']
+
+    !> Decimal text of an integer (default kind or `ik`), for messages and labels; its length
+    !> is exactly the number of characters needed.
     interface fsym_int_text
         module procedure int_text_default, int_text_ik
     end interface fsym_int_text
 
+    !> Number of characters of the decimal text of an integer (default kind or `ik`).
+    interface fsym_int_text_len
+        module procedure int_text_len_default, int_text_len_ik
+    end interface fsym_int_text_len
+
 contains
 
-    !> Short text for a status code.
+    !> Index of `code` in the table of texts.
+    pure integer function text_index(code)
+        integer, intent(in) :: code
+        text_index = FSYM_ERR_LAST + 1
+        if (code >= 0 .and. code <= FSYM_ERR_LAST) text_index = code
+    end function text_index
+
+    !> Length of `fsym_status_message(code)`.
+    pure integer function fsym_status_message_len(code)
+        integer, intent(in) :: code  !! a status code
+        fsym_status_message_len = len_trim(texts(text_index(code)))
+    end function fsym_status_message_len
+
+    !> Short text for a status code ('unknown status code' for a code not in use).
     pure function fsym_status_message(code) result(msg)
         integer, intent(in) :: code  !! a status code
-        character(len=:), allocatable :: msg
-        select case (code)
-        case (FSYM_SUCCESS);                 msg = 'success'
-        case (FSYM_ERR_UNKNOWN_METHOD);      msg = 'unknown method name'
-        case (FSYM_ERR_BAD_PARAMETER);       msg = 'parameter outside the family''s domain'
-        case (FSYM_ERR_INCONSISTENT_SCHEME); msg = 'inconsistent scheme'
-        case (FSYM_ERR_BAD_STEP);            msg = 'time step is zero, NaN or infinite'
-        case (FSYM_ERR_NONFINITE_STATE);     msg = 'state holds NaN or Inf'
-        case (FSYM_ERR_NONFINITE_FORCE);     msg = 'force model returned NaN or Inf'
-        case (FSYM_ERR_SHAPE);               msg = 'array shape mismatch'
-        case (FSYM_ERR_NO_GRADIENT);         msg = 'scheme needs a gradient the force model lacks'
-        case (FSYM_ERR_NOT_INITIALIZED);     msg = 'object used before a successful init'
-        case (FSYM_ERR_WORK_SIZE);           msg = 'work array too short'
-        case (FSYM_ERR_MODEL);               msg = 'force model reported a failure'
-        case (FSYM_ERR_NOT_ELLIPTIC);        msg = 'orbit is not a bound ellipse'
-        case (FSYM_ERR_NO_CONVERGENCE);      msg = 'iteration did not converge'
-        case (FSYM_ERR_IO);                  msg = 'input/output error'
-        case (FSYM_ERR_CAPACITY);            msg = 'buffer capacity exceeded'
-        case (FSYM_ERR_NO_POTENTIAL);        msg = 'force model provides no potential'
-        case (FSYM_ERR_BAD_REQUEST);         msg = 'reverse communication resumed out of order'
-        case (FSYM_ERR_LAPACK);              msg = 'LAPACK routine failed'
-        case default;                        msg = 'unknown status code'
-        end select
+        character(len=fsym_status_message_len(code)) :: msg
+        msg = texts(text_index(code))
     end function fsym_status_message
 
-    !> Report an error: set `stat` and `errmsg` when the caller passed them; when the caller
-    !> passed no `stat`, the caller declined to handle errors, so write the message to
-    !> standard error and stop. With code = FSYM_SUCCESS it only sets `stat` to zero.
+    !> Report an error: set `stat` and `errmsg` (`text: detail`, cut to the length of
+    !> `errmsg`) when the caller passed them; when the caller passed no `stat`, the caller
+    !> declined to handle errors, so write the message to standard error and stop. With
+    !> code = FSYM_SUCCESS it only sets `stat` to zero. Allocates nothing.
     subroutine fsym_report(code, detail, stat, errmsg)
         integer, intent(in) :: code                            !! status code
         character(len=*), intent(in) :: detail                 !! what went wrong, in context
         integer, intent(out), optional :: stat                 !! receives `code`
         character(len=*), intent(inout), optional :: errmsg    !! receives the message on error
-        character(len=:), allocatable :: text
+        integer :: n, m
         if (present(stat)) stat = code
         if (code == FSYM_SUCCESS) return
-        if (len_trim(detail) > 0) then
-            text = fsym_status_message(code)//': '//trim(detail)
-        else
-            text = fsym_status_message(code)
+        n = len_trim(texts(text_index(code)))
+        m = len_trim(detail)
+        if (present(errmsg)) then
+            errmsg = texts(text_index(code))
+            if (m > 0 .and. n + 2 < len(errmsg)) then
+                errmsg(n + 1:n + 2) = ': '
+                errmsg(n + 3:) = detail(1:m)
+            end if
         end if
-        if (present(errmsg)) errmsg = text
         if (.not. present(stat)) then
-            write (error_unit, '(a)') 'forward-symplectic: '//text
+            if (m > 0) then
+                write (error_unit, '(4a)') 'forward-symplectic: ', texts(text_index(code))(1:n), &
+                    ': ', detail(1:m)
+            else
+                write (error_unit, '(2a)') 'forward-symplectic: ', texts(text_index(code))(1:n)
+            end if
             error stop 1
         end if
     end subroutine fsym_report
@@ -119,27 +163,45 @@ contains
         if (code == FSYM_SUCCESS) return
         if (present(errmsg)) errmsg = msg
         if (.not. present(stat)) then
-            write (error_unit, '(a)') 'forward-symplectic: '//trim(msg)
+            write (error_unit, '(2a)') 'forward-symplectic: ', trim(msg)
             error stop 1
         end if
     end subroutine fsym_pass
 
+    !> Number of characters of the decimal text of a default integer.
+    pure integer function int_text_len_default(k)
+        integer, intent(in) :: k                  !! the integer
+        int_text_len_default = int_text_len_ik(int(k, ik))
+    end function int_text_len_default
+
+    !> Number of characters of the decimal text of an integer(ik).
+    pure integer function int_text_len_ik(k)
+        integer(ik), intent(in) :: k              !! the integer
+        integer(ik) :: a
+        int_text_len_ik = 1
+        if (k < 0_ik) int_text_len_ik = 2
+        if (k == -huge(k) - 1_ik) then
+            int_text_len_ik = 20; return          ! -9223372036854775808: no positive twin
+        end if
+        a = abs(k)
+        do while (a >= 10_ik)
+            a = a / 10_ik
+            int_text_len_ik = int_text_len_ik + 1
+        end do
+    end function int_text_len_ik
+
     !> Decimal text of a default integer.
     pure function int_text_default(k) result(s)
         integer, intent(in) :: k                  !! the integer
-        character(len=:), allocatable :: s
-        character(len=12) :: buf
-        write (buf, '(i0)') k
-        s = trim(buf)
+        character(len=int_text_len_default(k)) :: s
+        write (s, '(i0)') k
     end function int_text_default
 
     !> Decimal text of an integer(ik).
     pure function int_text_ik(k) result(s)
         integer(ik), intent(in) :: k              !! the integer
-        character(len=:), allocatable :: s
-        character(len=21) :: buf
-        write (buf, '(i0)') k
-        s = trim(buf)
+        character(len=int_text_len_ik(k)) :: s
+        write (s, '(i0)') k
     end function int_text_ik
 
 end module fsym_status

@@ -7,7 +7,6 @@ program fsym_tests
     use test_kepler, only: collect_kepler
     use test_integrator, only: collect_integrator
     use test_errors, only: collect_errors
-    use test_stability, only: collect_stability
     use test_badinput, only: collect_badinput
     use test_nbody, only: collect_nbody
     use test_legacy, only: collect_legacy
@@ -23,7 +22,7 @@ program fsym_tests
     if (command_argument_count() > 0) call get_command_argument(1, filter)
     tests = [collect_scheme(), collect_kepler(), collect_integrator(), collect_errors(), &
              collect_nbody(), collect_legacy(), collect_study(), collect_fastpath(), &
-             collect_stability(), collect_badinput()]
+             collect_badinput()]
     npass = 0; nfail = 0
     do k = 1, size(tests)
         if (len_trim(filter) > 0) then

@@ -39,7 +39,8 @@ dirs=("$mk" "$tmp/consumer")
 if command -v fpm >/dev/null 2>&1; then
     say "fpm install --prefix $tmp/fpm-prefix; clients linked with -lforward-symplectic"
     fp=$tmp/fpm; mkdir -p "$fp"
-    (cd "$root" && quiet fpm install --prefix "$tmp/fpm-prefix")
+    (cd "$root" && quiet fpm install --profile release --flag "-ffp-contract=off" \
+        --prefix "$tmp/fpm-prefix")
     gfortran -O2 -ffp-contract=off "$here/f77_nbody.f" -L"$tmp/fpm-prefix/lib" \
         -lforward-symplectic -o "$fp/f77_nbody"
     cc -O2 -ffp-contract=off -I"$root/include" "$here/c_nbody.c" -L"$tmp/fpm-prefix/lib" \

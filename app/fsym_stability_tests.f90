@@ -1,10 +1,15 @@
 !> Linear stability: closed forms (T2, Forest-Ruth), the stage-array oscillator map against
 !> the integrator, x* of every method against direct integration just below and above it,
 !> the stiff chain's stable step against x*/omega_max, and the FPU model's gradient term.
-module test_stability
+!>
+!> Study tests: they use the study modules of app/ (fpm lets only sources in app/ use them), so
+!> they run as the fpm test `fsym-study-tests` (driver `fsym_study_tests.f90`).
+module fsym_stability_tests
     use fsym
-    use fsym_stability
-    use testing
+    use fsym_linear_stability
+    use fsym_fpu
+    use fsym_stability_runs
+    use fsym_study_testing, only: test_t, new_test, check, check_close, note
     implicit none
     private
     public :: collect_stability
@@ -252,4 +257,4 @@ contains
         call note(trim(buf))
     end subroutine note_real
 
-end module test_stability
+end module fsym_stability_tests

@@ -1,5 +1,5 @@
 !> Explicit interfaces for the LAPACK routines the analysis modules use, and nothing else.
-!> Only `fsym_stability` uses it.
+!> Only `fsym_linear_stability` (a study module of app/) uses it.
 module fsym_lapack
     use fsym_kinds, only: wp
     implicit none

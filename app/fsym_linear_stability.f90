@@ -9,7 +9,7 @@
 !> * For any linear force model, the one-step map of any stepper (including RKN) as a matrix,
 !>   found by stepping the identity columns; its spectral radius by LAPACK `dgeev`; the
 !>   model's frequencies by `dsyev`; and the largest stable step.
-module fsym_stability
+module fsym_linear_stability
     use fsym_kinds, only: wp
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_SHAPE, FSYM_ERR_NONFINITE_STATE, FSYM_ERR_MODEL, &
                            FSYM_ERR_LAPACK, fsym_report, fsym_pass
@@ -292,4 +292,4 @@ contains
 
     end subroutine fsym_stable_step
 
-end module fsym_stability
+end module fsym_linear_stability

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Proof that a project using forward-symplectic through fpm links neither LAPACK nor HDF5:
+# copies this consumer to a temporary directory (path dependency rewritten to this checkout),
+# builds it with `fpm build --verbose`, runs it, and checks
+#   1. the consumer's link line names no -llapack, -lblas, -lhdf5* (fpm passes a dependency's
+#      [build] link on to its consumers, so the library must declare none);
+#   2. `nm` of the executable has no LAPACK or HDF5 symbol, and `ldd` lists no such library;
+#   3. as a control that the check can fail: the same test on this package's own fsym-stability
+#      link line finds -llapack (the program that needs it), and on fsym-solar, which is built
+#      from the same app/ folder (and links HDF5, which it uses), finds neither LAPACK nor the
+#      study module that calls it (fpm links into each program only the app/ modules it uses).
+# Exits non-zero on any failure. Run from anywhere; needs fpm on PATH.
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../../.." && pwd)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+say() { printf '[fpm-consumer] %s\n' "$*"; }
+flags="-O2 -ffp-contract=off"
+bad='-l(lapack|blas|hdf5[a-z_]*)\b'
+
+cp -r "$here/." "$tmp/consumer"
+rm -rf "$tmp/consumer/build"
+rel=$(python3 -c 'import os,sys; print(os.path.relpath(sys.argv[1], sys.argv[2]))' "$root" "$tmp/consumer")
+sed -i "s|path = \"../../..\"|path = \"$rel\"|" "$tmp/consumer/fpm.toml"
+cd "$tmp/consumer"
+fpm build --flag "$flags" --verbose > "$tmp/build.log" 2>&1 || { cat "$tmp/build.log"; exit 1; }
+exe=$(fpm run --flag "$flags" --runner echo 2>/dev/null | tail -1)
+link=$(grep -E -- "-o [^ ]*app/fsym-fpm-consumer( |$)" "$tmp/build.log" | tail -1)
+[ -n "$link" ] || { say "consumer link line not found"; cat "$tmp/build.log"; exit 1; }
+say "link line: ...${link##*-Werror=implicit-interface}"
+status=0
+if grep -qE -- "$bad" <<< "$link"; then say "FAIL: the consumer links LAPACK or HDF5"; status=1
+else say "link line names neither LAPACK/BLAS nor HDF5"; fi
+if nm "$exe" | grep -qiE ' [TUu] (dgeev|dsyev|dgemm)_?$|h5[a-z]*_'; then
+    say "FAIL: LAPACK or HDF5 symbols in the executable"; status=1
+else say "nm: no LAPACK or HDF5 symbol in the executable"; fi
+if ldd "$exe" | grep -qiE 'liblapack|libblas|libhdf5'; then
+    say "FAIL: ldd lists LAPACK or HDF5"; status=1
+else say "ldd: $(ldd "$exe" | awk '{print $1}' | tr '\n' ' ')"; fi
+"$exe" | sed 's/^/[fpm-consumer]   /' || { say "FAIL: the consumer did not run"; status=1; }
+
+# Control: the same checks detect LAPACK where it is linked, and per-program pruning of app/.
+cd "$root"
+fpm build --flag "$flags" --verbose > "$tmp/self.log" 2>&1 || { cat "$tmp/self.log"; exit 1; }
+stab=$(grep -E -- "-o [^ ]*app/fsym-stability( |$)" "$tmp/self.log" | tail -1)
+solar=$(grep -E -- "-o [^ ]*app/fsym-solar( |$)" "$tmp/self.log" | tail -1)
+if [ -z "$stab" ] || [ -z "$solar" ]; then
+    # already built: force the link lines by removing the two executables
+    find build -type f \( -name fsym-stability -o -name fsym-solar \) -path '*app*' -delete
+    fpm build --flag "$flags" --verbose > "$tmp/self.log" 2>&1
+    stab=$(grep -E -- "-o [^ ]*app/fsym-stability( |$)" "$tmp/self.log" | tail -1)
+    solar=$(grep -E -- "-o [^ ]*app/fsym-solar( |$)" "$tmp/self.log" | tail -1)
+fi
+if grep -qE -- '-llapack' <<< "$stab"; then say "control: fsym-stability links -llapack (detected)"
+else say "FAIL: control: -llapack not found on fsym-stability's link line"; status=1; fi
+if grep -qE -- '-l(lapack|blas)\b' <<< "$solar" || grep -q 'fsym_linear_stability' <<< "$solar"; then
+    say "FAIL: control: fsym-solar links LAPACK or the LAPACK study module"; status=1
+else say "control: fsym-solar links neither LAPACK nor app/fsym_linear_stability.f90 (pruned)"; fi
+[ $status -eq 0 ] && say "the fpm consumer links neither LAPACK nor HDF5"
+exit $status
