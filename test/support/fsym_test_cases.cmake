@@ -29,6 +29,18 @@ foreach(name IN LISTS names)
         list(APPEND labels bitwise)
     endif()
     string(REGEX REPLACE "^(test_)?([A-Za-z0-9_]+)_suite[.](test_)?" "\\2." short "${name}")
+    # pFUnit repeats the parameter ("test[A][A]"): keep it once
+    string(FIND "${short}" "[" at)
+    if(at GREATER -1)
+        string(SUBSTRING "${short}" ${at} -1 tail)
+        string(LENGTH "${tail}" len)
+        math(EXPR half "${len} / 2")
+        string(SUBSTRING "${tail}" 0 ${half} first)
+        if(tail STREQUAL "${first}${first}")
+            string(SUBSTRING "${short}" 0 ${at} head)
+            set(short "${head}${first}")
+        endif()
+    endif()
     set(test "${PREFIX}${short}")
     string(APPEND script
         "add_test([==[${test}]==] \"${EXE}\")\n"
