@@ -1,6 +1,7 @@
 !> The test system of the legacy-face tests: a Sun and five planets on near-circular,
 !> slightly inclined orbits (days, solar masses, AU), the caller's force routines with the
-!> classic F77 signatures and as C callbacks, and the reference run through the modern `integrator_t`.
+!> classic F77 signatures and as C callbacks, and the reference run through the modern
+!> `integrator_t`.
 module fsym_test_sun_planets
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_ptr, c_f_pointer, c_associated
     use fsym, only: wp, ik, integrator_t, nbody_model_t, fsym_nbody_accel, fsym_nbody_gradient
