@@ -50,8 +50,10 @@ printf '\n[test] per tree:\n'
 for tree in debug release; do
     awk -v t="$tree" '
         $0 ~ "Test +#[0-9]+: " t "/" {
-            n++; if ($0 ~ / Passed +[0-9.]+ sec/) p++; else f++ }
-        END { printf "[test]   %-8s %d tests, %d passed, %d failed\n", t, n, p, f }' "$log"
+            n++
+            if ($0 ~ / Passed +[0-9.]+ sec/) p++; else if ($0 ~ /Skipped/) s++; else f++ }
+        END { printf "[test]   %-8s %d tests, %d passed, %d skipped, %d failed\n", t, n, p, s, f }
+        ' "$log"
 done
 summary=$(grep -E '^[0-9]+% tests passed, [0-9]+ tests? failed out of [0-9]+' "$log" | tail -n 1)
 if [ -z "$summary" ]; then
