@@ -356,7 +356,7 @@ contains
             fsym_int_text(nperiods)//' --nmax '//fsym_int_text(nmax)// &
             '` (run by `bash scripts/stability.sh`);'// &
             ' the raw data are in `'//trim(out_file)//'`. Closed forms are checked by '// &
-            '`fpm test -- stability`.', ''
+            '`bash scripts/test.sh -R stability`.', ''
         ! ---------------------------------------------------------------- 1
         write (u, '(a)') '## 1. Linear stability from the coefficient table', '', &
             'For V = omega^2 q^2/2 one step of a splitting scheme is a 2x2 map of '// &
@@ -537,7 +537,8 @@ contains
         write (u, '(a)') '', '![long](figures/stability_long.png)', ''
         ! ---------------------------------------------------------------- 7
         write (u, '(a)') '## 7. Bad input', '', &
-            '`test/test_badinput.f90` (in the normal suite, `fpm test -- badinput`) feeds 400 '// &
+            '`test/test_badinput.pf` (in the suite, `bash scripts/test.sh -R badinput`) '// &
+            'feeds 400 '// &
             'random cases (fixed seed) to every method: NaN/Inf in q or v, NaN/Inf/zero '// &
             'steps, r = 0, steps from 1e2 to 1e300 and 1e-310, model failures and NaN forces '// &
             'mid-step, mismatched shapes, bad names and dimensions. It asserts: never stat = 0 '// &

@@ -15,6 +15,15 @@ ls /usr/lib/*/liblapack.so >/dev/null 2>&1 || ls /usr/lib/liblapack.so >/dev/nul
 ls /usr/lib/*/libblas.so >/dev/null 2>&1 || ls /usr/lib/libblas.so >/dev/null 2>&1 || missing+=(libblas-dev)
 command -v cmake >/dev/null 2>&1 || missing+=(cmake)
 command -v make >/dev/null 2>&1 || missing+=(make)
+# --- test suite (issue 12): pFUnit's build needs m4; the C client needs a C compiler; without
+# a pFUnit source archive, scripts/pfunit.sh clones pFUnit with git ---
+command -v m4 >/dev/null 2>&1 || missing+=(m4)
+command -v cc >/dev/null 2>&1 || missing+=(gcc)
+fsym_vendor=$(dirname "${BASH_SOURCE[0]}")/../../shared/vendor
+if [ -z "${FSYM_PFUNIT_SOURCE:-}" ] && [ ! -f "$fsym_vendor/pfunit-4.14.0-src.tar.gz" ]; then
+    command -v git >/dev/null 2>&1 || missing+=(git)
+fi
+# --- end of the test-suite block ---
 
 if [ ${#missing[@]} -gt 0 ]; then
     if [ "$(id -u)" -eq 0 ]; then SUDO=""; elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then SUDO="sudo"; else

@@ -1,66 +1,151 @@
 #!/usr/bin/env bash
-# Proof by real clients: build and install the core library with CMake into a temporary
-# prefix, then build against the INSTALLED library
-#   - Makefile style: the F77 client with `gfortran ... -lfsym` alone (no HDF5, no LAPACK),
-#     the C client with `pkg-config --libs --static fsym`, the modern reference with `use fsym`;
-#   - CMake style: the same three through find_package(forward-symplectic);
-#   - fpm style: the same three against `fpm install` (when fpm is on PATH);
-# run them all and check that every client reproduces the modern API bit for bit.
-# Exits non-zero on any failure. Run from anywhere; FSYM_KEEP=1 keeps the temporary tree.
+# Proof by real clients, against the INSTALLED library. CTest runs it stage by stage (see
+# test/CMakeLists.txt); without arguments it runs every stage in a temporary folder.
+#
+#   run.sh install DIR      CMake build and install of the core library into DIR/prefix
+#   run.sh modern DIR       the modern reference client (`use fsym`), Makefile style
+#   run.sh f77 DIR          the F77 client with `gfortran ... -lfsym` alone (no HDF5, no
+#                           LAPACK), compared with the modern client bit for bit
+#   run.sh c DIR            the C client with `pkg-config --libs --static fsym`, compared
+#   run.sh cmake DIR        the three through find_package(forward-symplectic), compared with
+#                           each other and with the Makefile-style modern client
+#   run.sh fpm DIR          the three against `fpm install` (exit 77, skipped, without fpm)
+#   run.sh example DIR [PFUNIT_DIR]
+#                           example/user_model_test: a user's model tested with pFUnit,
+#                           built with CMake against DIR/prefix, run by its own CTest
+#
+# Every stage after `install` needs DIR/prefix. Exits non-zero on any failure.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
-tmp=$(mktemp -d)
-if [ "${FSYM_KEEP:-0}" != 1 ]; then trap 'rm -rf "$tmp"' EXIT; fi
 say() { printf '[clients] %s\n' "$*"; }
-quiet() { "$@" > "$tmp/log" 2>&1 || { cat "$tmp/log"; return 1; }; }
+quiet() { "$@" > "$work/log" 2>&1 || { cat "$work/log"; return 1; }; }
+fflags=(-O2 -ffp-contract=off)
 
-prefix=$tmp/prefix
-say "CMake build and install of libfsym into $prefix"
-quiet cmake -S "$root" -B "$tmp/lib" -DCMAKE_INSTALL_PREFIX="$prefix" -DCMAKE_BUILD_TYPE=Release
-quiet cmake --build "$tmp/lib" -j 2
-quiet cmake --install "$tmp/lib"
+stage_install() {
+    say "CMake build and install of libfsym into $prefix"
+    quiet cmake -S "$root" -B "$dir/lib" -DCMAKE_INSTALL_PREFIX="$prefix" \
+        -DCMAKE_BUILD_TYPE=Release
+    quiet cmake --build "$dir/lib" -j "$(nproc)"
+    quiet cmake --install "$dir/lib"
+}
 
-mk=$tmp/make; mkdir -p "$mk"
-say "gfortran f77_nbody.f -L$prefix/lib -lfsym   (nothing else)"
-gfortran -O2 -ffp-contract=off "$here/f77_nbody.f" -L"$prefix/lib" -lfsym -o "$mk/f77_nbody"
-if nm "$mk/f77_nbody" | grep -qiE 'h5[a-z]*_|dgeev|dgesv'; then say "HDF5/LAPACK symbols linked"; exit 1; fi
-export PKG_CONFIG_PATH="$prefix/lib/pkgconfig${PKG_CONFIG_PATH:+:$PKG_CONFIG_PATH}"
-say "cc c_nbody.c \$(pkg-config --cflags --libs --static fsym)  -> $(pkg-config --libs --static fsym)"
-cc -O2 -ffp-contract=off "$here/c_nbody.c" $(pkg-config --cflags --libs --static fsym) -o "$mk/c_nbody"
-gfortran -O2 -ffp-contract=off -I"$prefix/include/forward-symplectic" "$here/modern_nbody.f90" \
-    -L"$prefix/lib" -lfsym -o "$mk/modern_nbody"
+need_prefix() {
+    [ -f "$prefix/lib/pkgconfig/fsym.pc" ] || { say "no installed library in $prefix"; exit 1; }
+}
 
-say "CMake consumer: find_package(forward-symplectic), target forward-symplectic::fsym"
-quiet cmake -S "$here/cmake_consumer" -B "$tmp/consumer" -DCMAKE_PREFIX_PATH="$prefix"
-quiet cmake --build "$tmp/consumer" -j 2
+build_modern() {   # build_modern OUTDIR
+    gfortran "${fflags[@]}" -I"$prefix/include/forward-symplectic" "$here/modern_nbody.f90" \
+        -L"$prefix/lib" -lfsym -J "$1" -o "$1/modern_nbody"
+    "$1/modern_nbody" > "$1/modern.txt"
+}
 
-dirs=("$mk" "$tmp/consumer")
-if command -v fpm >/dev/null 2>&1; then
-    say "fpm install --prefix $tmp/fpm-prefix; clients linked with -lforward-symplectic"
-    fp=$tmp/fpm; mkdir -p "$fp"
-    (cd "$root" && quiet fpm install --profile release --flag "-ffp-contract=off" \
-        --prefix "$tmp/fpm-prefix")
-    gfortran -O2 -ffp-contract=off "$here/f77_nbody.f" -L"$tmp/fpm-prefix/lib" \
-        -lforward-symplectic -o "$fp/f77_nbody"
-    cc -O2 -ffp-contract=off -I"$root/include" "$here/c_nbody.c" -L"$tmp/fpm-prefix/lib" \
-        -lforward-symplectic -lgfortran -lm -o "$fp/c_nbody"
-    gfortran -O2 -ffp-contract=off -I"$tmp/fpm-prefix/include" "$here/modern_nbody.f90" \
-        -L"$tmp/fpm-prefix/lib" -lforward-symplectic -o "$fp/modern_nbody"
-    dirs+=("$fp")
+compare() {        # compare OUTDIR CLIENT...: each CLIENT.txt against modern.txt
+    local out=$1; shift
+    local files=()
+    for c in "$@"; do files+=("$c.txt"); done
+    grep -h -E '^(short|unknown)' "${files[@]/#/$out/}" | sed 's/^/[clients]   /' || true
+    say "$(basename "$out"): $* against the modern API"
+    (cd "$out" && python3 "$here/compare.py" modern.txt "${files[@]}") | sed 's/^/[clients]   /'
+    return "${PIPESTATUS[0]}"
+}
+
+stage_modern() {
+    need_prefix; mkdir -p "$work"
+    build_modern "$work"
+    say "modern reference: $(wc -l < "$work/modern.txt") lines"
+}
+
+stage_f77() {
+    need_prefix; mkdir -p "$work"
+    build_modern "$work"
+    say "gfortran f77_nbody.f -L$prefix/lib -lfsym   (nothing else)"
+    gfortran "${fflags[@]}" "$here/f77_nbody.f" -L"$prefix/lib" -lfsym -o "$work/f77_nbody"
+    if nm "$work/f77_nbody" | grep -qiE 'h5[a-z]*_|dgeev|dgesv'; then
+        say "HDF5/LAPACK symbols linked"; exit 1
+    fi
+    "$work/f77_nbody" > "$work/f77.txt"
+    compare "$work" f77
+}
+
+stage_c() {
+    need_prefix; mkdir -p "$work"
+    build_modern "$work"
+    export PKG_CONFIG_PATH="$prefix/lib/pkgconfig${PKG_CONFIG_PATH:+:$PKG_CONFIG_PATH}"
+    local libs
+    libs=$(pkg-config --cflags --libs --static fsym)
+    say "cc c_nbody.c \$(pkg-config --cflags --libs --static fsym)  -> $libs"
+    # shellcheck disable=SC2086
+    cc -O2 -ffp-contract=off "$here/c_nbody.c" $libs -o "$work/c_nbody"
+    "$work/c_nbody" > "$work/c.txt"
+    compare "$work" c
+}
+
+stage_cmake() {
+    need_prefix; mkdir -p "$work/make"
+    say "CMake consumer: find_package(forward-symplectic), target forward-symplectic::fsym"
+    quiet cmake -S "$here/cmake_consumer" -B "$work" -DCMAKE_PREFIX_PATH="$prefix"
+    quiet cmake --build "$work" -j "$(nproc)"
+    "$work/modern_nbody" > "$work/modern.txt"
+    "$work/f77_nbody" > "$work/f77.txt"
+    "$work/c_nbody" > "$work/c.txt"
+    compare "$work" f77 c
+    build_modern "$work/make"
+    cmp -s "$work/make/modern.txt" "$work/modern.txt" \
+        || { say "Makefile-style and CMake builds differ"; exit 1; }
+    say "Makefile-style and CMake builds agree"
+}
+
+stage_fpm() {
+    command -v fpm >/dev/null 2>&1 || { say "fpm not on PATH: skipped"; exit 77; }
+    mkdir -p "$work"
+    say "fpm install --prefix $work/prefix; clients linked with -lforward-symplectic"
+    (cd "$root" && quiet fpm install --prefix "$work/prefix")
+    local p=$work/prefix
+    gfortran "${fflags[@]}" "$here/f77_nbody.f" -L"$p/lib" -lforward-symplectic \
+        -o "$work/f77_nbody"
+    cc -O2 -ffp-contract=off -I"$root/include" "$here/c_nbody.c" -L"$p/lib" \
+        -lforward-symplectic -lgfortran -lm -o "$work/c_nbody"
+    gfortran "${fflags[@]}" -I"$p/include" "$here/modern_nbody.f90" -L"$p/lib" \
+        -lforward-symplectic -J "$work" -o "$work/modern_nbody"
+    "$work/modern_nbody" > "$work/modern.txt"
+    "$work/f77_nbody" > "$work/f77.txt"
+    "$work/c_nbody" > "$work/c.txt"
+    compare "$work" f77 c
+}
+
+stage_example() {
+    need_prefix; mkdir -p "$work"
+    local pf=${1:-}
+    local path="$prefix"
+    [ -n "$pf" ] && path="$prefix;$pf"
+    say "example/user_model_test: pFUnit test of a user's model against the installed library"
+    quiet cmake -S "$root/example/user_model_test" -B "$work" -DCMAKE_PREFIX_PATH="$path" \
+        ${pf:+-DPFUNIT_DIR="$pf"}
+    quiet cmake --build "$work" -j "$(nproc)"
+    (cd "$work" && ctest --output-on-failure) | sed 's/^/[clients]   /'
+    return "${PIPESTATUS[0]}"
+}
+
+if [ $# -eq 0 ]; then
+    dir=$(mktemp -d)
+    if [ "${FSYM_KEEP:-0}" != 1 ]; then trap 'rm -rf "$dir"' EXIT; fi
+    for s in install modern f77 c cmake fpm; do
+        rc=0
+        bash "$0" "$s" "$dir" || rc=$?
+        if [ $rc -ne 0 ] && [ $rc -ne 77 ]; then say "FAILED ($s)"; exit 1; fi
+    done
+    say "all clients reproduce the modern API bit for bit"
+    exit 0
 fi
 
-status=0
-for dir in "${dirs[@]}"; do
-    "$dir/modern_nbody" > "$dir/modern.txt"
-    "$dir/f77_nbody" > "$dir/f77.txt"
-    "$dir/c_nbody" > "$dir/c.txt"
-    grep -h -E '^(short|unknown)' "$dir/f77.txt" "$dir/c.txt" | sed 's/^/[clients]   /'
-    say "$(basename "$dir"): comparing with the modern API"
-    (cd "$dir" && python3 "$here/compare.py" modern.txt f77.txt c.txt) | sed 's/^/[clients]   /' \
-        || status=1
-done
-# the two builds (Makefile style and CMake) agree with each other too
-cmp -s "$mk/modern.txt" "$tmp/consumer/modern.txt" || { say "Make and CMake builds differ"; status=1; }
-if [ $status -ne 0 ]; then say "FAILED"; exit 1; fi
-say "all clients reproduce the modern API bit for bit"
+stage=$1
+dir=$(mkdir -p "$2" && cd "$2" && pwd)
+prefix=$dir/prefix
+work=$dir/$stage
+case "$stage" in
+    install) work=$dir; stage_install ;;
+    modern | f77 | c | cmake | fpm) "stage_$stage" ;;
+    example) stage_example "${3:-}" ;;
+    *) echo "run.sh: unknown stage $stage" >&2; exit 2 ;;
+esac

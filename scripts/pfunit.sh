@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# Finds pFUnit (4.x) for the test suite, or builds and caches it. Sourced by scripts/test.sh
+# after scripts/setup.sh; sets FSYM_PFUNIT_DIR (the folder of PFUNITConfig.cmake, to pass
+# to CMake as PFUNIT_DIR) and says which of these it used, in this order:
+#   1. an installed pFUnit that CMake finds by itself (PFUNIT_DIR, CMAKE_PREFIX_PATH, or a
+#      system prefix);
+#   2. the cached install in $FSYM_PFUNIT_CACHE (default ~/.cache/forward-symplectic/pfunit);
+#   3. a build from a source archive or folder: $FSYM_PFUNIT_SOURCE, by default
+#      ../shared/vendor/pfunit-4.14.0-src.tar.gz beside the repository when that exists;
+#   4. a build from the public repository: git clone --recursive --branch v4.14.0.
+# Builds 3 and 4 install into the cache (only the serial library: no MPI, OpenMP,
+# fHamcrest or RobustRunner, none of which the tests use) with -j$(nproc): a few minutes,
+# once per machine.
+set -euo pipefail
+
+fsym_pfunit_say() { printf '[pfunit] %s\n' "$*" >&2; }
+
+# PFUNITConfig.cmake's folder as CMake finds it, with the prefixes given ($1, may be empty);
+# empty when not found.
+fsym_pfunit_probe() {
+    local probe
+    probe=$(mktemp -d)
+    cat > "$probe/CMakeLists.txt" <<'EOF'
+cmake_minimum_required(VERSION 3.16)
+project(probe LANGUAGES Fortran)
+find_package(PFUNIT QUIET)
+if(PFUNIT_FOUND)
+    file(WRITE "${CMAKE_BINARY_DIR}/found" "${PFUNIT_DIR}")
+endif()
+EOF
+    cmake -S "$probe" -B "$probe/build" ${1:+-DCMAKE_PREFIX_PATH="$1"} >/dev/null 2>&1 || true
+    [ -f "$probe/build/found" ] && cat "$probe/build/found"
+    rm -rf "$probe"
+}
+
+fsym_pfunit_build() {    # fsym_pfunit_build SOURCE_DIR INSTALL_PREFIX
+    local src=$1 prefix=$2 build
+    build=$(mktemp -d)
+    fsym_pfunit_say "building pFUnit from $src into $prefix (-j$(nproc); a few minutes, once)"
+    cmake -S "$src" -B "$build" -DCMAKE_INSTALL_PREFIX="$prefix" -DCMAKE_BUILD_TYPE=Release \
+        -DSKIP_MPI=YES -DSKIP_OPENMP=YES -DSKIP_FHAMCREST=YES -DSKIP_ROBUST=YES \
+        -DENABLE_TESTS=NO > "$build.log" 2>&1 \
+        && cmake --build "$build" -j "$(nproc)" >> "$build.log" 2>&1 \
+        && cmake --install "$build" >> "$build.log" 2>&1 \
+        || { tail -n 40 "$build.log" >&2; fsym_pfunit_say "pFUnit build failed"; return 1; }
+    rm -rf "$build" "$build.log"
+}
+
+fsym_pfunit_cache=${FSYM_PFUNIT_CACHE:-$HOME/.cache/forward-symplectic/pfunit}
+FSYM_PFUNIT_DIR=$(fsym_pfunit_probe "")
+if [ -n "$FSYM_PFUNIT_DIR" ]; then
+    fsym_pfunit_say "installed pFUnit found by CMake: $FSYM_PFUNIT_DIR"
+else
+    # the cache counts when CMake finds a complete install in it (its targets file checks
+    # that the library is there)
+    if [ -z "$(fsym_pfunit_probe "$fsym_pfunit_cache")" ]; then
+        fsym_pfunit_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+        fsym_pfunit_src=${FSYM_PFUNIT_SOURCE:-}
+        if [ -z "$fsym_pfunit_src" ] && \
+           [ -f "$fsym_pfunit_root/../shared/vendor/pfunit-4.14.0-src.tar.gz" ]; then
+            fsym_pfunit_src=$fsym_pfunit_root/../shared/vendor/pfunit-4.14.0-src.tar.gz
+        fi
+        fsym_pfunit_tmp=$(mktemp -d)
+        if [ -n "$fsym_pfunit_src" ] && [ -d "$fsym_pfunit_src" ]; then
+            fsym_pfunit_say "source: the folder $fsym_pfunit_src"
+            fsym_pfunit_tree=$fsym_pfunit_src
+        elif [ -n "$fsym_pfunit_src" ]; then
+            fsym_pfunit_say "source: the archive $(realpath "$fsym_pfunit_src")"
+            tar xzf "$fsym_pfunit_src" -C "$fsym_pfunit_tmp"
+            fsym_pfunit_tree=$(find "$fsym_pfunit_tmp" -maxdepth 2 -name CMakeLists.txt | head -n 1)
+            fsym_pfunit_tree=$(dirname "$fsym_pfunit_tree")
+        else
+            fsym_pfunit_say "source: git clone --recursive --branch v4.14.0 of pFUnit's repository"
+            git clone -q --depth 1 --recursive --shallow-submodules --branch v4.14.0 \
+                https://github.com/Goddard-Fortran-Ecosystem/pFUnit.git "$fsym_pfunit_tmp/pFUnit"
+            fsym_pfunit_tree=$fsym_pfunit_tmp/pFUnit
+        fi
+        rm -rf "$fsym_pfunit_cache"
+        fsym_pfunit_start=$SECONDS
+        fsym_pfunit_build "$fsym_pfunit_tree" "$fsym_pfunit_cache"
+        fsym_pfunit_say "built and cached in $((SECONDS - fsym_pfunit_start)) s"
+        rm -rf "$fsym_pfunit_tmp"
+    else
+        fsym_pfunit_say "cached pFUnit: $fsym_pfunit_cache"
+    fi
+    FSYM_PFUNIT_DIR=$(fsym_pfunit_probe "$fsym_pfunit_cache")
+    if [ -z "$FSYM_PFUNIT_DIR" ]; then
+        fsym_pfunit_say "CMake does not find pFUnit in $fsym_pfunit_cache"; exit 1
+    fi
+fi
+export FSYM_PFUNIT_DIR
