@@ -1,0 +1,174 @@
+!> The reference model of the threads test: `nbody_model_t` whose force and gradient term
+!> come from the pure, never-threaded `fsym_nbody_accel` and `fsym_nbody_gradient`.
+module fsym_scale_bench_models
+    use fsym_kinds, only: wp
+    use fsym_nbody, only: nbody_model_t, fsym_nbody_accel, fsym_nbody_gradient
+    implicit none
+    private
+
+    !> `nbody_model_t` on the serial entry points (same parameters, no threads).
+    type, extends(nbody_model_t), public :: serial_nbody_model_t
+    contains
+        procedure :: acceleration => serial_acceleration
+        procedure :: gradient => serial_gradient
+    end type serial_nbody_model_t
+
+contains
+
+    !> Accelerations by `fsym_nbody_accel` (q must be (3, size(m))).
+    subroutine serial_acceleration(self, q, a, stat)
+        class(serial_nbody_model_t), intent(inout) :: self  !! the model
+        real(wp), intent(in), contiguous :: q(:, :)         !! positions (3, n)
+        real(wp), intent(out), contiguous :: a(:, :)        !! accelerations (3, n)
+        integer, intent(inout) :: stat                      !! 1 on a bad shape
+        if (size(q, 1) /= 3 .or. size(q, 2) /= size(self%m)) then
+            stat = 1; a = 0.0_wp; return
+        end if
+        call fsym_nbody_accel(size(self%m), self%m, self%g, self%eps, q, a)
+    end subroutine serial_acceleration
+
+    !> Gradient term by `fsym_nbody_gradient`.
+    subroutine serial_gradient(self, q, a, g, stat)
+        class(serial_nbody_model_t), intent(inout) :: self  !! the model
+        real(wp), intent(in), contiguous :: q(:, :)         !! positions (3, n)
+        real(wp), intent(in), contiguous :: a(:, :)         !! accelerations at q
+        real(wp), intent(out), contiguous :: g(:, :)        !! gradient term (3, n)
+        integer, intent(inout) :: stat                      !! 1 on a bad shape
+        if (size(q, 1) /= 3 .or. size(q, 2) /= size(self%m)) then
+            stat = 1; g = 0.0_wp; return
+        end if
+        call fsym_nbody_gradient(size(self%m), self%m, self%g, self%eps, q, a, g)
+    end subroutine serial_gradient
+
+end module fsym_scale_bench_models
+
+!> Serial and threaded N-body runs and the pair-kernel benchmark of `scripts/scale.sh`
+!> (MPI-free; threads when the library is built with OpenMP, as many as OMP_NUM_THREADS).
+!>
+!>     fsym_scale_bench mode=state n=N method=A steps=S h=H state=FILE [kernel=serial]
+!>         integrate the scaling system with `nbody_model_t` and write the end state; with
+!>         `kernel=serial`, with a model that calls the never-threaded `fsym_nbody_accel` and
+!>         `fsym_nbody_gradient` instead (the reference of the threads test)
+!>     fsym_scale_bench mode=compare n=N a=FILE b=FILE
+!>         print `identical` or the first difference of two end states (exit status 1)
+!>     fsym_scale_bench mode=pair n=N reps=R
+!>         time `acceleration` and `gradient` of `nbody_model_t` (R interleaved repetitions):
+!>         `pair N=... ns/pair=X` (minimum, per unordered pair i < j, so n(n-1)/2 pairs),
+!>         then the gradient's, the spread and the per-interaction cost
+!>     fsym_scale_bench mode=step n=N method=A steps=S reps=R
+!>         time per step of `integrator_t` on `nbody_model_t`
+program fsym_scale_bench
+    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+    use fsym
+    use fsym_nbody, only: nbody_model_t
+    use fsym_scale_bench_models, only: serial_nbody_model_t
+    use fsym_scale_setup, only: scale_initial_state, scale_write_state, scale_difference, &
+                                scale_arg_int, scale_arg_real, scale_arg_text, scale_now, &
+                                SCALE_EPS
+    !$ use omp_lib, only: omp_get_max_threads
+    implicit none
+    type(nbody_model_t) :: model
+    type(serial_nbody_model_t) :: smodel
+    type(integrator_t) :: integ
+    real(wp), allocatable :: q(:, :), v(:, :), m(:), a(:, :), gt(:, :), q2(:, :), v2(:, :)
+    real(wp), allocatable :: ta(:), tg(:), ts(:)
+    character(len=32) :: mode, method, kernel
+    character(len=256) :: fa, fb, diff
+    integer :: n, nsteps, reps, r, st, nthreads
+    real(wp) :: h, t0, pairs
+
+    call scale_arg_text('mode', 'pair', mode)
+    call scale_arg_text('method', 'A', method)
+    n = scale_arg_int('n', 1000)
+    nsteps = scale_arg_int('steps', 5)
+    reps = max(1, scale_arg_int('reps', 5))
+    h = scale_arg_real('h', 1.0e-3_wp)
+    nthreads = 1
+    !$ nthreads = omp_get_max_threads()
+    allocate (q(3, n), v(3, n), m(n), a(3, n), gt(3, n))
+    call scale_initial_state(n, q, v, m)
+    call model%init(m, 1.0_wp, SCALE_EPS, st)
+
+    select case (trim(mode))
+    case ('state')
+        call scale_arg_text('state', 'state.bin', fa)
+        call scale_arg_text('kernel', 'library', kernel)
+        if (kernel == 'serial') then
+            smodel%nbody_model_t = model
+            call integ%init_by_name(trim(method), smodel, 3, n, st)
+            if (st == FSYM_SUCCESS) call integ%run(smodel, q, v, h, int(nsteps, ik), st)
+        else
+            call integ%init_by_name(trim(method), model, 3, n, st)
+            if (st == FSYM_SUCCESS) call integ%run(model, q, v, h, int(nsteps, ik), st)
+        end if
+        if (st == FSYM_SUCCESS) call scale_write_state(trim(fa), q, v, st)
+        if (st /= FSYM_SUCCESS) error stop 'fsym_scale_bench: run or write failed'
+    case ('compare')
+        call scale_arg_text('a', '', fa)
+        call scale_arg_text('b', '', fb)
+        allocate (q2(3, n), v2(3, n))
+        call read_state(trim(fa), q, v)
+        call read_state(trim(fb), q2, v2)
+        call scale_difference(q, v, q2, v2, diff)
+        if (len_trim(diff) == 0) then
+            write (output_unit, '(a)') 'identical'
+        else
+            write (output_unit, '(a)') trim(diff)
+            error stop 1
+        end if
+    case ('pair')
+        allocate (ta(reps), tg(reps))
+        pairs = 0.5_wp * real(n, wp) * real(n - 1, wp)
+        call model%acceleration(q, a, st)   ! warm-up
+        do r = 1, reps
+            t0 = scale_now()
+            call model%acceleration(q, a, st)
+            ta(r) = scale_now() - t0
+            t0 = scale_now()
+            call model%gradient(q, a, gt, st)
+            tg(r) = scale_now() - t0
+        end do
+        write (output_unit, '(a,i0,a,f0.3,a,f0.3,a,f0.1,a,f0.1,a,f0.3,a,i0)') 'pair N=', n, &
+            ' ns/pair=', 1.0e9_wp * minval(ta) / pairs, ' gradient_ns/pair=', &
+            1.0e9_wp * minval(tg) / pairs, ' spread%=', 100.0_wp * (maxval(ta) / minval(ta) - 1), &
+            ' gradient_spread%=', 100.0_wp * (maxval(tg) / minval(tg) - 1), &
+            ' ns/interaction=', 0.5e9_wp * minval(ta) / pairs, ' threads=', nthreads
+    case ('step')
+        allocate (ts(reps))
+        call scale_arg_text('state', '', fa)
+        do r = 1, reps
+            call scale_initial_state(n, q, v, m)
+            call integ%init_by_name(trim(method), model, 3, n, st)
+            t0 = scale_now()
+            call integ%run(model, q, v, h, int(nsteps, ik), st)
+            ts(r) = (scale_now() - t0) / real(nsteps, wp)
+        end do
+        if (st /= FSYM_SUCCESS) error stop 'fsym_scale_bench: run failed'
+        write (output_unit, '(a,i0,a,a,a,i0,a,f0.3,a,f0.2)') 'step N=', n, ' method=', &
+            trim(method), ' ranks=1 threads=', nthreads, ' us/step=', 1.0e6_wp * minval(ts), &
+            ' spread%=', 100.0_wp * (maxval(ts) / minval(ts) - 1)
+        if (len_trim(fa) > 0) call scale_write_state(trim(fa), q, v, st)
+    case default
+        write (error_unit, '(a)') 'fsym_scale_bench: mode must be state, compare, pair or step'
+        error stop 2
+    end select
+
+contains
+
+    !> Read an end state written by `scale_write_state` (stops on error: a benchmark program).
+    subroutine read_state(path, qq, vv)
+        character(len=*), intent(in) :: path   !! file
+        real(wp), intent(out) :: qq(:, :)      !! positions
+        real(wp), intent(out) :: vv(:, :)      !! velocities
+        integer :: u, ios
+        open (newunit=u, file=path, access='stream', form='unformatted', status='old', &
+              action='read', iostat=ios)
+        if (ios == 0) read (u, iostat=ios) qq, vv
+        if (ios /= 0) then
+            write (error_unit, '(a)') 'fsym_scale_bench: cannot read '//path
+            error stop 2
+        end if
+        close (u)
+    end subroutine read_state
+
+end program fsym_scale_bench
