@@ -57,6 +57,9 @@ end module fsym_scale_bench_models
 !>         then the gradient's, the spread and the per-interaction cost
 !>     fsym_scale_bench mode=step n=N method=A steps=S reps=R
 !>         time per step of `integrator_t` on `nbody_model_t`
+!>     fsym_scale_bench mode=cost
+!>         force and gradient evaluations per step of the methods (`cost method=... nF=...
+!>         nG=...`), from which scripts/scale.sh derives the messages and bytes per step
 program fsym_scale_bench
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use fsym
@@ -75,6 +78,8 @@ program fsym_scale_bench
     character(len=32) :: mode, method, kernel
     character(len=256) :: fa, fb, diff
     integer :: n, nsteps, reps, r, st, nthreads
+    character(len=4), parameter :: cost_methods(6) = [character(len=4) :: 'FR', 'A', 'A''', &
+                                                        'C', 'C''', 'BM']
     real(wp) :: h, t0, pairs
 
     call scale_arg_text('mode', 'pair', mode)
@@ -148,8 +153,16 @@ program fsym_scale_bench
             trim(method), ' ranks=1 threads=', nthreads, ' us/step=', 1.0e6_wp * minval(ts), &
             ' spread%=', 100.0_wp * (maxval(ts) / minval(ts) - 1)
         if (len_trim(fa) > 0) call scale_write_state(trim(fa), q, v, st)
+    case ('cost')
+        do r = 1, size(cost_methods)
+            call integ%init_by_name(trim(cost_methods(r)), model, 3, n, st)
+            if (st /= FSYM_SUCCESS) cycle
+            write (output_unit, '(a,a,a,i0,a,i0)') 'cost method=', trim(cost_methods(r)), &
+                ' nF=', integ%forces_per_step(), ' nG=', integ%gradients_per_step()
+        end do
     case default
-        write (error_unit, '(a)') 'fsym_scale_bench: mode must be state, compare, pair or step'
+        write (error_unit, '(a)') 'fsym_scale_bench: mode must be state, compare, pair, step '// &
+            'or cost'
         error stop 2
     end select
 
