@@ -92,27 +92,28 @@ contains
         real(wp), intent(in) :: q2(:, :)         !! positions, second run
         real(wp), intent(in) :: v2(:, :)         !! velocities, second run
         character(len=*), intent(out) :: text    !! '' or the first difference
+        call first_difference('q', q1, q2, text)
+        if (len_trim(text) == 0) call first_difference('v', v1, v2, text)
+    end subroutine scale_difference
+
+    !> Empty when x and y hold the same bits, else `name(c,j): x vs y` where they first differ.
+    subroutine first_difference(name, x, y, text)
+        character(len=*), intent(in) :: name     !! array name for the message
+        real(wp), intent(in) :: x(:, :)          !! first array
+        real(wp), intent(in) :: y(:, :)          !! second array (same shape)
+        character(len=*), intent(out) :: text    !! '' or the first difference
         integer :: j, c
         text = ''
-        do j = 1, size(q1, 2)
-            do c = 1, 3
-                if (transfer(q1(c, j), 0_int64) /= transfer(q2(c, j), 0_int64)) then
-                    write (text, '(a,i0,a,i0,a,es24.16e3,a,es24.16e3)') 'q(', c, ',', j, '): ', &
-                        q1(c, j), ' vs ', q2(c, j)
+        do j = 1, size(x, 2)
+            do c = 1, size(x, 1)
+                if (transfer(x(c, j), 0_int64) /= transfer(y(c, j), 0_int64)) then
+                    write (text, '(a,a,i0,a,i0,a,es24.16e3,a,es24.16e3)') name, '(', c, ',', j, &
+                        '): ', x(c, j), ' vs ', y(c, j)
                     return
                 end if
             end do
         end do
-        do j = 1, size(v1, 2)
-            do c = 1, 3
-                if (transfer(v1(c, j), 0_int64) /= transfer(v2(c, j), 0_int64)) then
-                    write (text, '(a,i0,a,i0,a,es24.16e3,a,es24.16e3)') 'v(', c, ',', j, '): ', &
-                        v1(c, j), ' vs ', v2(c, j)
-                    return
-                end if
-            end do
-        end do
-    end subroutine scale_difference
+    end subroutine first_difference
 
     !> The value of `key=...` on the command line, or `default`.
     subroutine scale_arg_text(key, default, val)
@@ -128,16 +129,11 @@ contains
         end do
     end subroutine scale_arg_text
 
-    !> Integer value of `key=...`, or `default` (also when it does not parse).
+    !> Integer value of `key=...` (the nearest integer to its real value), or `default`.
     integer function scale_arg_int(key, default) result(val)
         character(len=*), intent(in) :: key   !! key
         integer, intent(in) :: default        !! value when absent
-        character(len=256) :: t
-        integer :: ios
-        call scale_arg_text(key, '', t)
-        val = default
-        if (len_trim(t) > 0) read (t, *, iostat=ios) val
-        if (len_trim(t) > 0 .and. ios /= 0) val = default
+        val = nint(scale_arg_real(key, real(default, wp)))
     end function scale_arg_int
 
     !> Real value of `key=...`, or `default` (also when it does not parse).

@@ -131,17 +131,7 @@ contains
         integer, intent(in) :: i2               !! last target body
         real(wp), intent(out) :: a(3, i1:i2)    !! accelerations of bodies i1..i2
         integer, intent(in), optional :: block  !! targets per block
-        integer :: nbk, kb, ib, nb, bs
-        bs = block_size(block)
-        nbk = (i2 - i1 + bs) / bs
-        !$omp parallel do schedule(static) default(shared) private(kb, ib, nb) &
-        !$omp& if(nbk > 1 .and. real(n, wp) * real(i2 - i1 + 1, wp) > FSYM_NBODY_OMP_MIN)
-        do kb = 1, nbk
-            ib = i1 + (kb - 1) * bs
-            nb = min(bs, i2 - ib + 1)
-            call accel_block(n, m, g, eps * eps, q, ib, nb, a(:, ib:ib + nb - 1))
-        end do
-        !$omp end parallel do
+        call pair_range(n, m, g, eps, q, i1, i2, a, block)
     end subroutine fsym_nbody_accel_range
 
     !> Gradient term of the target bodies i1..i2 (see the module description), given the
@@ -158,18 +148,40 @@ contains
         integer, intent(in) :: i2               !! last target body
         real(wp), intent(out) :: gt(3, i1:i2)   !! gradient term of bodies i1..i2
         integer, intent(in), optional :: block  !! targets per block
+        call pair_range(n, m, g, eps, q, i1, i2, gt, block, a)
+    end subroutine fsym_nbody_gradient_range
+
+    !> Blocks of targets i1..i2 over the threads: the accelerations, or with `a` given the
+    !> gradient term, into `out`.
+    subroutine pair_range(n, m, g, eps, q, i1, i2, out, block, a)
+        integer, intent(in) :: n                     !! number of bodies
+        real(wp), intent(in) :: m(n)                 !! masses
+        real(wp), intent(in) :: g                    !! gravitational constant
+        real(wp), intent(in) :: eps                  !! softening length
+        real(wp), intent(in) :: q(3, n)              !! positions of all bodies
+        integer, intent(in) :: i1                    !! first target body
+        integer, intent(in) :: i2                    !! last target body
+        real(wp), intent(out) :: out(3, i1:i2)       !! result for bodies i1..i2
+        integer, intent(in), optional :: block       !! targets per block
+        real(wp), intent(in), optional :: a(3, n)    !! accelerations (gradient term wanted)
         integer :: nbk, kb, ib, nb, bs
+        logical :: grad
         bs = block_size(block)
         nbk = (i2 - i1 + bs) / bs
+        grad = present(a)
         !$omp parallel do schedule(static) default(shared) private(kb, ib, nb) &
         !$omp& if(nbk > 1 .and. real(n, wp) * real(i2 - i1 + 1, wp) > FSYM_NBODY_OMP_MIN)
         do kb = 1, nbk
             ib = i1 + (kb - 1) * bs
             nb = min(bs, i2 - ib + 1)
-            call gradient_block(n, m, g, eps * eps, q, a, ib, nb, gt(:, ib:ib + nb - 1))
+            if (grad) then
+                call gradient_block(n, m, g, eps * eps, q, a, ib, nb, out(:, ib:ib + nb - 1))
+            else
+                call accel_block(n, m, g, eps * eps, q, ib, nb, out(:, ib:ib + nb - 1))
+            end if
         end do
         !$omp end parallel do
-    end subroutine fsym_nbody_gradient_range
+    end subroutine pair_range
 
     !> The block size to use: `block` clipped to 1..FSYM_NBODY_MAX_BLOCK, default
     !> FSYM_NBODY_BLOCK.
