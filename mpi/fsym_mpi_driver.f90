@@ -155,7 +155,7 @@ program fsym_mpi_driver
             tstep(r) = (MPI_Wtime() - t0) / real(nsteps, wp)
             if (st /= FSYM_SUCCESS) call fail_all('run: '//trim(msg))
         end do
-        if (rank == 0) write (output_unit, '(a,i0,a,a,a,i0,a,i0,a,f14.3,a,f7.2,a,2(f8.2,a),i0)') &
+        if (rank == 0) write (output_unit, '(a,i0,a,a,a,i0,a,i0,a,f0.3,a,f0.2,a,2(f0.2,a),i0)') &
             'step N=', n, ' method=', trim(method), ' ranks=', nranks, ' threads=', nthreads, &
             ' us/step=', 1.0e6_wp * minval(tstep), ' spread%=', &
             100.0_wp * (maxval(tstep) / minval(tstep) - 1.0_wp), ' gathers/step=', &

@@ -87,7 +87,7 @@ if [ -z "$mdiff" ]; then echo "mpi: bitwise identical to serial"; else
 # ---- pair benchmark (serial library, one core): minimum over rounds x repetitions ----
 pairs=$out/pair.txt
 : >"$pairs"
-for round in 1 2 3; do
+for round in 1 2 3 4 5; do
     for n in 1000 4000 16000; do
         reps=7
         [ $n -ge 16000 ] && reps=3
@@ -113,7 +113,8 @@ res=$out/results.txt
     cat "$pairs"
 } >"$res"
 # threads: the library's pair kernel on 1 and 2 threads, interleaved
-for round in 1 2 3; do
+for round in 1 2 3 4 5; do
+    echo "load $(cut -d' ' -f1 /proc/loadavg)" >>"$res"
     for n in 1000 2000 4000 16000; do
         reps=7
         [ $n -ge 16000 ] && reps=3
@@ -124,7 +125,8 @@ for round in 1 2 3; do
 done
 # strong scaling (fixed N) and weak scaling (N sqrt(P) for P = 2 cores: work per core fixed),
 # method A (forces and the gradient term); ranks x threads = 1x1, 1x2, 2x1, 2x2
-for round in 1 2 3; do
+for round in 1 2 3 4; do
+    echo "load $(cut -d' ' -f1 /proc/loadavg)" >>"$res"
     for n in 1000 4000 16000 1414 5657 22627; do
         case $n in
             1000 | 1414) s=10 ;;

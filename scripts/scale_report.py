@@ -14,7 +14,7 @@ RPOS = 24           # bytes per body in a gather (3 doubles)
 
 def fields(line):
     """key=value pairs of a result line."""
-    return dict(re.findall(r'(\S+?)=(\S+)', line))
+    return dict(re.findall(r'(\S+?)=\s*(\S+)', line))
 
 
 def main(src, dst):
@@ -23,7 +23,9 @@ def main(src, dst):
     cost, pair, tpair, step = [], {}, {}, {}
     for ln in lines:
         head = ln.split(' ', 1)[0]
-        if head in ('cpu', 'load_before', 'load_after', 'compiler'):
+        if head == 'load':
+            info.setdefault('loads', []).append(float(ln.split()[1]))
+        elif head in ('cpu', 'load_before', 'load_after', 'compiler'):
             info[head] = ln.split(' ', 1)[1]
         elif head == 'check':
             info.setdefault('check', []).append(ln.split(' ', 1)[1])
@@ -57,9 +59,11 @@ def main(src, dst):
     w(f"Machine: {info.get('cpu', '?')}; {info.get('compiler', '')}. CMake Release build "
       '(`-O3`) with `-march=native -ffp-contract=off`. The machine is shared: load average '
       f"(1, 5, 15 min) {info.get('load_before', '?')} before the runs and "
-      f"{info.get('load_after', '?')} after. Every figure is the minimum over 3 interleaved "
-      'rounds (and, for the pair benchmark, over several repetitions in each); the spread '
-      '(max/min - 1 over the rounds) says how noisy it was.')
+      f"{info.get('load_after', '?')} after; the 1-minute load average between rounds ranged "
+      f"over {min(info.get('loads', [0])):.2f} .. {max(info.get('loads', [0])):.2f} (2 would "
+      'mean both cores busy). Every figure is the minimum over 4 or 5 interleaved rounds '
+      '(and, for the pair benchmark, over several repetitions in each); the spread '
+      '(max/min - 1 over the rounds and repetitions) says how noisy it was.')
     w('')
     w('## Bitwise checks (`bash scripts/scale.sh --check`)')
     w('')
