@@ -64,12 +64,13 @@ program fsym_mpi_driver
     character(len=32) :: method, blocks
     character(len=256) :: statefile, msg, diff
     integer :: ierr, rank, nranks, n, nsteps, reps, failr, faila, st, k, r, nl, nthreads
-    integer :: failed_at, ok_local, ok_all
+    integer :: failed_at, ok_local, ok_all, provided
     integer(int64) :: g0, r0
     real(wp) :: h, t0
     logical :: check, uneven
 
-    call MPI_Init(ierr)
+    ! threads (OpenMP inside the pair kernel) never call MPI: the funneled level suffices
+    call MPI_Init_thread(MPI_THREAD_FUNNELED, provided, ierr)
     call MPI_Comm_rank(MPI_COMM_WORLD, rank, ierr)
     call MPI_Comm_size(MPI_COMM_WORLD, nranks, ierr)
     n = scale_arg_int('n', 1000)
