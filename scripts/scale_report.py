@@ -116,9 +116,9 @@ def main(src, dst):
       'gradient-term evaluation in one `MPI_Allgatherv` of accelerations (24 bytes per body '
       'plus an 8-byte flag per rank: "my positions changed since the last gather", which '
       'in a normal step never happens, so positions are not sent again) and one '
-      '`MPI_Allreduce`. With P ranks and N bodies a rank receives 24 N (P-1)/P bytes per '
-      'gather (all blocks but its own) and sends its 24 N/P bytes (to P-1 ranks with a ring, '
-      'in log2 P rounds with recursive doubling). Per step (nF forces, nG gradient terms, '
+      '`MPI_Allreduce`. With P ranks and N bodies a rank receives the 24 N (P-1)/P bytes of '
+      'all blocks but its own in each gather, and sends as many (a ring: P-1 messages of '
+      'about 24 N/P bytes; recursive doubling: log2 P messages of doubling size). Per step (nF forces, nG gradient terms, '
       'from the library\'s scheme data; the first step of a run takes one force more):')
     w('')
     w('| method | nF | nG | collectives per step | bytes received per rank per step | '
