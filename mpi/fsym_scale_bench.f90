@@ -54,7 +54,10 @@ end module fsym_scale_bench_models
 !>     fsym_scale_bench mode=pair n=N reps=R
 !>         time `acceleration` and `gradient` of `nbody_model_t` (R interleaved repetitions):
 !>         `pair N=... ns/pair=X` (minimum, per unordered pair i < j, so n(n-1)/2 pairs),
-!>         then the gradient's, the spread and the per-interaction cost
+!>         then the gradient's, the spreads, and the cost per interaction (i, k) from many
+!>         short calls of the range kernel (128 targets against all bodies)
+!>     fsym_scale_bench mode=tpair n=N reps=R
+!>         the same on 1 and 2 threads alternately (OpenMP build): two `tpair` lines
 !>     fsym_scale_bench mode=step n=N method=A steps=S reps=R
 !>         time per step of `integrator_t` on `nbody_model_t`
 !>     fsym_scale_bench mode=cost
@@ -63,21 +66,21 @@ end module fsym_scale_bench_models
 program fsym_scale_bench
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use fsym
-    use fsym_nbody, only: nbody_model_t
+    use fsym_nbody, only: nbody_model_t, fsym_nbody_accel_range
     use fsym_scale_bench_models, only: serial_nbody_model_t
     use fsym_scale_setup, only: scale_initial_state, scale_write_state, scale_difference, &
                                 scale_arg_int, scale_arg_real, scale_arg_text, scale_now, &
                                 SCALE_EPS
-    !$ use omp_lib, only: omp_get_max_threads
+    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
     implicit none
     type(nbody_model_t) :: model
     type(serial_nbody_model_t) :: smodel
     type(integrator_t) :: integ
     real(wp), allocatable :: q(:, :), v(:, :), m(:), a(:, :), gt(:, :), q2(:, :), v2(:, :)
-    real(wp), allocatable :: ta(:), tg(:), ts(:)
+    real(wp), allocatable :: ta(:), tg(:), ts(:), tsl(:)
     character(len=32) :: mode, method, kernel
     character(len=256) :: fa, fb, diff
-    integer :: n, nsteps, reps, r, st, nthreads
+    integer :: n, nsteps, reps, r, st, nthreads, nt, k, nsl
     character(len=4), parameter :: cost_methods(6) = [character(len=4) :: 'FR', 'A', 'A''', &
                                                         'C', 'C''', 'BM']
     real(wp) :: h, t0, pairs
@@ -121,23 +124,44 @@ program fsym_scale_bench
             write (output_unit, '(a)') trim(diff)
             error stop 1
         end if
-    case ('pair')
-        allocate (ta(reps), tg(reps))
+    case ('pair', 'tpair')
+        ! pair: the current thread count; tpair: 1 and 2 threads alternately in this process
+        ! (OpenMP build), so that both see the same load on a shared machine
+        nt = 1
+        if (mode == 'tpair') nt = 2
+        allocate (ta(reps * nt), tg(reps * nt), tsl(reps * 20))
         pairs = 0.5_wp * real(n, wp) * real(n - 1, wp)
         call model%acceleration(q, a, st)   ! warm-up
         do r = 1, reps
-            t0 = scale_now()
-            call model%acceleration(q, a, st)
-            ta(r) = scale_now() - t0
-            t0 = scale_now()
-            call model%gradient(q, a, gt, st)
-            tg(r) = scale_now() - t0
+            do k = 1, nt
+                !$ if (mode == 'tpair') call omp_set_num_threads(k)
+                t0 = scale_now()
+                call model%acceleration(q, a, st)
+                ta(r + (k - 1) * reps) = scale_now() - t0
+                t0 = scale_now()
+                call model%gradient(q, a, gt, st)
+                tg(r + (k - 1) * reps) = scale_now() - t0
+            end do
         end do
-        write (output_unit, '(a,i0,a,f0.3,a,f0.3,a,f0.1,a,f0.1,a,f0.3,a,i0)') 'pair N=', n, &
-            ' ns/pair=', 1.0e9_wp * minval(ta) / pairs, ' gradient_ns/pair=', &
-            1.0e9_wp * minval(tg) / pairs, ' spread%=', 100.0_wp * (maxval(ta) / minval(ta) - 1), &
-            ' gradient_spread%=', 100.0_wp * (maxval(tg) / minval(tg) - 1), &
-            ' ns/interaction=', 0.5e9_wp * minval(ta) / pairs, ' threads=', nthreads
+        ! short calls (the first min(n, 128) targets against all bodies, one thread), many of
+        ! them: the cost per interaction with the least exposure to other processes' bursts
+        nsl = min(n, 128)
+        !$ call omp_set_num_threads(1)
+        do r = 1, size(tsl)
+            t0 = scale_now()
+            call fsym_nbody_accel_range(n, m, 1.0_wp, SCALE_EPS, q, 1, nsl, a(:, 1:nsl))
+            tsl(r) = scale_now() - t0
+        end do
+        do k = 1, nt
+            if (mode == 'tpair') nthreads = k
+            write (output_unit, '(a,a,i0,a,f0.3,a,f0.3,a,f0.1,a,f0.1,a,f0.3,a,i0)') trim(mode), &
+                ' N=', n, ' ns/pair=', 1.0e9_wp * minval(ta((k - 1) * reps + 1:k * reps)) / pairs, &
+                ' gradient_ns/pair=', 1.0e9_wp * minval(tg((k - 1) * reps + 1:k * reps)) / pairs, &
+                ' spread%=', spread(ta((k - 1) * reps + 1:k * reps)), &
+                ' gradient_spread%=', spread(tg((k - 1) * reps + 1:k * reps)), &
+                ' slice_ns/interaction=', 1.0e9_wp * minval(tsl) / (real(nsl, wp) * (n - 1)), &
+                ' threads=', nthreads
+        end do
     case ('step')
         allocate (ts(reps))
         call scale_arg_text('state', '', fa)
@@ -151,7 +175,7 @@ program fsym_scale_bench
         if (st /= FSYM_SUCCESS) error stop 'fsym_scale_bench: run failed'
         write (output_unit, '(a,i0,a,a,a,i0,a,f0.3,a,f0.2)') 'step N=', n, ' method=', &
             trim(method), ' ranks=1 threads=', nthreads, ' us/step=', 1.0e6_wp * minval(ts), &
-            ' spread%=', 100.0_wp * (maxval(ts) / minval(ts) - 1)
+            ' spread%=', spread(ts)
         if (len_trim(fa) > 0) call scale_write_state(trim(fa), q, v, st)
     case ('cost')
         do r = 1, size(cost_methods)
@@ -167,6 +191,12 @@ program fsym_scale_bench
     end select
 
 contains
+
+    !> Spread of timings in per cent: max / min - 1.
+    pure real(wp) function spread(t)
+        real(wp), intent(in) :: t(:)  !! timings
+        spread = 100.0_wp * (maxval(t) / minval(t) - 1.0_wp)
+    end function spread
 
     !> Read an end state written by `scale_write_state` (stops on error: a benchmark program).
     subroutine read_state(path, qq, vv)
