@@ -25,6 +25,15 @@ if [ -z "${FSYM_PFUNIT_SOURCE:-}" ] && [ ! -f "$fsym_vendor/pfunit-4.14.0-src.ta
 fi
 # --- end of the test-suite block ---
 
+# ---- begin issue 14: OpenMPI, only when the MPI parts are built (FSYM_MPI=1; scripts/scale.sh
+# sets it): Debian's libopenmpi-dev (mpif90 and the mpi_f08 module) and openmpi-bin (mpirun).
+if [ "${FSYM_MPI:-0}" = 1 ]; then
+    command -v mpif90 >/dev/null 2>&1 || missing+=(libopenmpi-dev)
+    command -v mpirun >/dev/null 2>&1 || missing+=(openmpi-bin)
+    fsym_say "MPI parts requested: they need libopenmpi-dev and openmpi-bin (OpenMPI)"
+fi
+# ---- end issue 14 ----
+
 if [ ${#missing[@]} -gt 0 ]; then
     if [ "$(id -u)" -eq 0 ]; then SUDO=""; elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then SUDO="sudo"; else
         fsym_say "missing system packages: ${missing[*]}"

@@ -40,6 +40,14 @@ module fsym_nbody
     end type nbody_model_t
 
     public :: fsym_nbody_accel, fsym_nbody_gradient, fsym_nbody_potential
+    public :: fsym_nbody_accel_range, fsym_nbody_gradient_range
+
+    !> Targets per block of the pair kernel (any value gives the same bits; this one is fast).
+    integer, parameter, public :: FSYM_NBODY_BLOCK = 64
+    !> Largest block the pair kernel accepts (larger requests are clipped to it).
+    integer, parameter, public :: FSYM_NBODY_MAX_BLOCK = 256
+    !> Interactions per call below which the range routines stay on one thread.
+    real(wp), parameter :: FSYM_NBODY_OMP_MIN = 1.0e5_wp
 
 contains
 
@@ -75,7 +83,7 @@ contains
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine nbody_init
 
-    !> Accelerations of n bodies by direct summation over pairs (i < j).
+    !> Accelerations of n bodies by direct summation (all of them, serially).
     pure subroutine fsym_nbody_accel(n, m, g, eps, q, a)
         integer, intent(in) :: n            !! number of bodies
         real(wp), intent(in) :: m(n)        !! masses
@@ -83,28 +91,15 @@ contains
         real(wp), intent(in) :: eps         !! softening length
         real(wp), intent(in) :: q(3, n)     !! positions
         real(wp), intent(out) :: a(3, n)    !! accelerations
-        real(wp) :: dx, dy, dz, r2, f, e2
-        integer :: i, j
-        e2 = eps * eps
-        a = 0.0_wp
-        do i = 1, n - 1
-            do j = i + 1, n
-                dx = q(1, j) - q(1, i)
-                dy = q(2, j) - q(2, i)
-                dz = q(3, j) - q(3, i)
-                r2 = dx * dx + dy * dy + dz * dz + e2
-                f = g / (r2 * sqrt(r2))
-                a(1, i) = a(1, i) + m(j) * f * dx
-                a(2, i) = a(2, i) + m(j) * f * dy
-                a(3, i) = a(3, i) + m(j) * f * dz
-                a(1, j) = a(1, j) - m(i) * f * dx
-                a(2, j) = a(2, j) - m(i) * f * dy
-                a(3, j) = a(3, j) - m(i) * f * dz
-            end do
+        integer :: ib, nb
+        do ib = 1, n, FSYM_NBODY_BLOCK
+            nb = min(FSYM_NBODY_BLOCK, n - ib + 1)
+            call accel_block(n, m, g, eps * eps, q, ib, nb, a(:, ib:ib + nb - 1))
         end do
     end subroutine fsym_nbody_accel
 
-    !> Gradient term g_j = (1/m_j) d/dq_j sum_i m_i |a_i|^2, given the accelerations a at q.
+    !> Gradient term g_j = (1/m_j) d/dq_j sum_i m_i |a_i|^2, given the accelerations a at q
+    !> (all bodies, serially).
     pure subroutine fsym_nbody_gradient(n, m, g, eps, q, a, gt)
         integer, intent(in) :: n            !! number of bodies
         real(wp), intent(in) :: m(n)        !! masses
@@ -113,23 +108,222 @@ contains
         real(wp), intent(in) :: q(3, n)     !! positions
         real(wp), intent(in) :: a(3, n)     !! accelerations at q
         real(wp), intent(out) :: gt(3, n)   !! gradient term
-        real(wp) :: x(3), da(3), w(3), r2, rinv2, f, xda
-        integer :: i, j
-        gt = 0.0_wp
-        do i = 1, n - 1
-            do j = i + 1, n
-                x = q(:, j) - q(:, i)
-                r2 = x(1) * x(1) + x(2) * x(2) + x(3) * x(3) + eps * eps
-                rinv2 = 1.0_wp / r2
-                f = g * rinv2 / sqrt(r2)
-                da = a(:, i) - a(:, j)
-                xda = x(1) * da(1) + x(2) * da(2) + x(3) * da(3)
-                w = f * (da - (3.0_wp * xda * rinv2) * x)
-                gt(:, j) = gt(:, j) + (2.0_wp * m(i)) * w
-                gt(:, i) = gt(:, i) - (2.0_wp * m(j)) * w
-            end do
+        integer :: ib, nb
+        do ib = 1, n, FSYM_NBODY_BLOCK
+            nb = min(FSYM_NBODY_BLOCK, n - ib + 1)
+            call gradient_block(n, m, g, eps * eps, q, a, ib, nb, gt(:, ib:ib + nb - 1))
         end do
     end subroutine fsym_nbody_gradient
+
+    !> Accelerations of the target bodies i1..i2 from all n bodies: the one routine that the
+    !> model, its threaded form and the MPI model call. Targets go in blocks of `block`
+    !> bodies (default `FSYM_NBODY_BLOCK`, at most `FSYM_NBODY_MAX_BLOCK`), blocks over OpenMP
+    !> threads when the library is built with OpenMP; every body's sum runs over k = 1..n in
+    !> ascending order whatever the block size or thread count, so the bits never change.
+    !> Nothing is checked: 1 <= i1 <= i2 <= n is the caller's business.
+    subroutine fsym_nbody_accel_range(n, m, g, eps, q, i1, i2, a, block)
+        integer, intent(in) :: n                !! number of bodies
+        real(wp), intent(in) :: m(n)            !! masses
+        real(wp), intent(in) :: g               !! gravitational constant
+        real(wp), intent(in) :: eps             !! softening length
+        real(wp), intent(in) :: q(3, n)         !! positions of all bodies
+        integer, intent(in) :: i1               !! first target body
+        integer, intent(in) :: i2               !! last target body
+        real(wp), intent(out) :: a(3, i1:i2)    !! accelerations of bodies i1..i2
+        integer, intent(in), optional :: block  !! targets per block
+        call pair_range(n, m, g, eps, q, i1, i2, a, block)
+    end subroutine fsym_nbody_accel_range
+
+    !> Gradient term of the target bodies i1..i2 (see the module description), given the
+    !> positions and accelerations of all n bodies; blocks and threads as in
+    !> `fsym_nbody_accel_range`, with the same bitwise guarantee.
+    subroutine fsym_nbody_gradient_range(n, m, g, eps, q, a, i1, i2, gt, block)
+        integer, intent(in) :: n                !! number of bodies
+        real(wp), intent(in) :: m(n)            !! masses
+        real(wp), intent(in) :: g               !! gravitational constant
+        real(wp), intent(in) :: eps             !! softening length
+        real(wp), intent(in) :: q(3, n)         !! positions of all bodies
+        real(wp), intent(in) :: a(3, n)         !! accelerations of all bodies at q
+        integer, intent(in) :: i1               !! first target body
+        integer, intent(in) :: i2               !! last target body
+        real(wp), intent(out) :: gt(3, i1:i2)   !! gradient term of bodies i1..i2
+        integer, intent(in), optional :: block  !! targets per block
+        call pair_range(n, m, g, eps, q, i1, i2, gt, block, a)
+    end subroutine fsym_nbody_gradient_range
+
+    !> Blocks of targets i1..i2 over the threads: the accelerations, or with `a` given the
+    !> gradient term, into `out`.
+    subroutine pair_range(n, m, g, eps, q, i1, i2, out, block, a)
+        integer, intent(in) :: n                     !! number of bodies
+        real(wp), intent(in) :: m(n)                 !! masses
+        real(wp), intent(in) :: g                    !! gravitational constant
+        real(wp), intent(in) :: eps                  !! softening length
+        real(wp), intent(in) :: q(3, n)              !! positions of all bodies
+        integer, intent(in) :: i1                    !! first target body
+        integer, intent(in) :: i2                    !! last target body
+        real(wp), intent(out) :: out(3, i1:i2)       !! result for bodies i1..i2
+        integer, intent(in), optional :: block       !! targets per block
+        real(wp), intent(in), optional :: a(3, n)    !! accelerations (gradient term wanted)
+        integer :: nbk, kb, ib, nb, bs
+        logical :: grad
+        bs = block_size(block)
+        nbk = (i2 - i1 + bs) / bs
+        grad = present(a)
+        !$omp parallel do schedule(static) default(shared) private(kb, ib, nb) &
+        !$omp& if(nbk > 1 .and. real(n, wp) * real(i2 - i1 + 1, wp) > FSYM_NBODY_OMP_MIN)
+        do kb = 1, nbk
+            ib = i1 + (kb - 1) * bs
+            nb = min(bs, i2 - ib + 1)
+            if (grad) then
+                call gradient_block(n, m, g, eps * eps, q, a, ib, nb, out(:, ib:ib + nb - 1))
+            else
+                call accel_block(n, m, g, eps * eps, q, ib, nb, out(:, ib:ib + nb - 1))
+            end if
+        end do
+        !$omp end parallel do
+    end subroutine pair_range
+
+    !> The block size to use: `block` clipped to 1..FSYM_NBODY_MAX_BLOCK, default
+    !> FSYM_NBODY_BLOCK.
+    pure integer function block_size(block)
+        integer, intent(in), optional :: block  !! requested targets per block
+        block_size = FSYM_NBODY_BLOCK
+        if (present(block)) block_size = max(1, min(FSYM_NBODY_MAX_BLOCK, block))
+    end function block_size
+
+    !> The pair kernel for the acceleration: targets ib..ib+nb-1 (nb <= FSYM_NBODY_MAX_BLOCK)
+    !> against every body k = 1..n in ascending order. The targets are copied into contiguous
+    !> lanes, so the inner loop (`accel_lanes`) runs over lanes without a branch and
+    !> vectorises; when k is itself a target, its lane is left out.
+    !>
+    !> Each term is m_k * f * dx with dx = q_k - q_i, f = G / (s2 sqrt(s2)), added in order
+    !> k = 1, 2, ..., n. The symmetric pair loop (i < j, both bodies updated) that this kernel
+    !> replaced adds the same terms in the same order per body: its term for k < i is the
+    !> exact negative (IEEE subtraction and multiplication are sign-symmetric), subtracted.
+    !> So the bits are those of that loop, of any block size and any thread count.
+    pure subroutine accel_block(n, m, g, e2, q, ib, nb, a)
+        integer, intent(in) :: n            !! number of bodies
+        real(wp), intent(in) :: m(n)        !! masses
+        real(wp), intent(in) :: g           !! gravitational constant
+        real(wp), intent(in) :: e2          !! softening length squared
+        real(wp), intent(in) :: q(3, n)     !! positions
+        integer, intent(in) :: ib           !! first target
+        integer, intent(in) :: nb           !! number of targets
+        real(wp), intent(out) :: a(3, nb)   !! accelerations of the targets
+        real(wp) :: ti(FSYM_NBODY_MAX_BLOCK, 3), acc(FSYM_NBODY_MAX_BLOCK, 3)
+        integer :: k, l, self
+        do l = 1, nb
+            ti(l, :) = q(:, ib + l - 1)
+        end do
+        acc(1:nb, :) = 0.0_wp
+        do k = 1, n
+            self = k - ib + 1
+            if (self < 1 .or. self > nb) then
+                call accel_lanes(q(:, k), m(k), g, e2, 1, nb, ti, acc)
+            else
+                call accel_lanes(q(:, k), m(k), g, e2, 1, self - 1, ti, acc)
+                call accel_lanes(q(:, k), m(k), g, e2, self + 1, nb, ti, acc)
+            end if
+        end do
+        do l = 1, nb
+            a(:, l) = acc(l, :)
+        end do
+    end subroutine accel_block
+
+    !> Inner loop of the acceleration kernel: lanes l0..l1 (targets at ti) receive the
+    !> attraction of one body at qk with mass mk.
+    pure subroutine accel_lanes(qk, mk, g, e2, l0, l1, ti, acc)
+        real(wp), intent(in) :: qk(3)                                !! the source body
+        real(wp), intent(in) :: mk                                   !! its mass
+        real(wp), intent(in) :: g                                    !! gravitational constant
+        real(wp), intent(in) :: e2                                   !! softening squared
+        integer, intent(in) :: l0                                    !! first lane
+        integer, intent(in) :: l1                                    !! last lane
+        real(wp), intent(in) :: ti(FSYM_NBODY_MAX_BLOCK, 3)          !! target positions
+        real(wp), intent(inout) :: acc(FSYM_NBODY_MAX_BLOCK, 3)      !! accumulated accelerations
+        real(wp) :: dx, dy, dz, r2, f
+        integer :: l
+        !GCC$ vector
+        do l = l0, l1
+            dx = qk(1) - ti(l, 1)
+            dy = qk(2) - ti(l, 2)
+            dz = qk(3) - ti(l, 3)
+            r2 = dx * dx + dy * dy + dz * dz + e2
+            f = g / (r2 * sqrt(r2))
+            acc(l, 1) = acc(l, 1) + mk * f * dx
+            acc(l, 2) = acc(l, 2) + mk * f * dy
+            acc(l, 3) = acc(l, 3) + mk * f * dz
+        end do
+    end subroutine accel_lanes
+
+    !> The pair kernel for the gradient term: targets ib..ib+nb-1 against every body k = 1..n
+    !> in ascending order, with x = q_k - q_i, da = a_i - a_k, w = f (da - (3 x.da / s2) x),
+    !> f = G / s2 / s and the term -2 m_k w. As for the acceleration, these are the terms of
+    !> the symmetric pair loop (for k < i both x and da change sign, so w does), in its order.
+    pure subroutine gradient_block(n, m, g, e2, q, a, ib, nb, gt)
+        integer, intent(in) :: n            !! number of bodies
+        real(wp), intent(in) :: m(n)        !! masses
+        real(wp), intent(in) :: g           !! gravitational constant
+        real(wp), intent(in) :: e2          !! softening length squared
+        real(wp), intent(in) :: q(3, n)     !! positions
+        real(wp), intent(in) :: a(3, n)     !! accelerations at q
+        integer, intent(in) :: ib           !! first target
+        integer, intent(in) :: nb           !! number of targets
+        real(wp), intent(out) :: gt(3, nb)  !! gradient term of the targets
+        real(wp) :: ti(FSYM_NBODY_MAX_BLOCK, 6), acc(FSYM_NBODY_MAX_BLOCK, 3)
+        integer :: k, l, self
+        do l = 1, nb
+            ti(l, 1:3) = q(:, ib + l - 1)
+            ti(l, 4:6) = a(:, ib + l - 1)
+        end do
+        acc(1:nb, :) = 0.0_wp
+        do k = 1, n
+            self = k - ib + 1
+            if (self < 1 .or. self > nb) then
+                call gradient_lanes(q(:, k), a(:, k), m(k), g, e2, 1, nb, ti, acc)
+            else
+                call gradient_lanes(q(:, k), a(:, k), m(k), g, e2, 1, self - 1, ti, acc)
+                call gradient_lanes(q(:, k), a(:, k), m(k), g, e2, self + 1, nb, ti, acc)
+            end if
+        end do
+        do l = 1, nb
+            gt(:, l) = acc(l, :)
+        end do
+    end subroutine gradient_block
+
+    !> Inner loop of the gradient kernel: lanes l0..l1 (target positions and accelerations
+    !> at ti) receive the term of one body at qk with acceleration ak and mass mk.
+    pure subroutine gradient_lanes(qk, ak, mk, g, e2, l0, l1, ti, acc)
+        real(wp), intent(in) :: qk(3)                                !! the source body
+        real(wp), intent(in) :: ak(3)                                !! its acceleration
+        real(wp), intent(in) :: mk                                   !! its mass
+        real(wp), intent(in) :: g                                    !! gravitational constant
+        real(wp), intent(in) :: e2                                   !! softening squared
+        integer, intent(in) :: l0                                    !! first lane
+        integer, intent(in) :: l1                                    !! last lane
+        real(wp), intent(in) :: ti(FSYM_NBODY_MAX_BLOCK, 6)          !! target q and a
+        real(wp), intent(inout) :: acc(FSYM_NBODY_MAX_BLOCK, 3)      !! accumulated terms
+        real(wp) :: m2, dx, dy, dz, dax, day, daz, r2, rinv2, f, xda, c
+        integer :: l
+        m2 = 2.0_wp * mk
+        !GCC$ vector
+        do l = l0, l1
+            dx = qk(1) - ti(l, 1)
+            dy = qk(2) - ti(l, 2)
+            dz = qk(3) - ti(l, 3)
+            r2 = dx * dx + dy * dy + dz * dz + e2
+            rinv2 = 1.0_wp / r2
+            f = g * rinv2 / sqrt(r2)
+            dax = ti(l, 4) - ak(1)
+            day = ti(l, 5) - ak(2)
+            daz = ti(l, 6) - ak(3)
+            xda = dx * dax + dy * day + dz * daz
+            c = 3.0_wp * xda * rinv2
+            acc(l, 1) = acc(l, 1) - m2 * (f * (dax - c * dx))
+            acc(l, 2) = acc(l, 2) - m2 * (f * (day - c * dy))
+            acc(l, 3) = acc(l, 3) - m2 * (f * (daz - c * dz))
+        end do
+    end subroutine gradient_lanes
 
     !> Potential energy V = -sum_{i<j} G m_i m_j / s_ij.
     pure real(wp) function fsym_nbody_potential(n, m, g, eps, q) result(epot)
@@ -163,7 +357,7 @@ contains
         if (size(q, 1) /= 3 .or. size(self%m) /= n) then
             stat = FSYM_ERR_SHAPE; a = 0.0_wp; return
         end if
-        call fsym_nbody_accel(n, self%m, self%g, self%eps, q, a)
+        call fsym_nbody_accel_range(n, self%m, self%g, self%eps, q, 1, n, a)
     end subroutine nbody_acceleration
 
     !> Gradient term (see the module description).
@@ -181,7 +375,7 @@ contains
         if (size(q, 1) /= 3 .or. size(self%m) /= n) then
             stat = FSYM_ERR_SHAPE; g = 0.0_wp; return
         end if
-        call fsym_nbody_gradient(n, self%m, self%g, self%eps, q, a, g)
+        call fsym_nbody_gradient_range(n, self%m, self%g, self%eps, q, a, 1, n, g)
     end subroutine nbody_gradient
 
     !> Provided.
