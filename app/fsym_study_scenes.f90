@@ -5,6 +5,7 @@ module fsym_study_scenes
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use fsym
     use fsym_h5, only: h5_file_t, fsym_rename_file
+    use fsym_diagnostics, only: coefficient_tracker_t, fsym_relative_difference
     implicit none
     private
 
@@ -115,7 +116,7 @@ contains
         character(len=*), intent(in) :: label
         class(stepper_t), allocatable, intent(inout) :: s
         real(wp), intent(in) :: t0
-        call fsym_new_stepper(trim(label), kep, 2, 1, s, st, msg, t0=t0)
+        call fsym_new_stepper(trim(label), kep, 2, 1, s, st, msg, compensated=.true., t0=t0)
         call need(st, msg)
     end subroutine new_stepper
 
@@ -124,7 +125,7 @@ contains
         type(scheme_t), intent(in) :: sch
         class(stepper_t), allocatable, intent(inout) :: s
         type(integrator_t) :: it
-        call it%init(sch, kep, 2, 1, st, msg)
+        call it%init(sch, kep, 2, 1, st, msg, compensated=.true.)
         call need(st, msg)
         if (allocated(s)) deallocate (s)
         allocate (s, source=it)
@@ -538,11 +539,11 @@ contains
         character(len=:), allocatable :: s
         character(len=32) :: buf
         if (abs(x) >= 1.0e-2_wp .and. abs(x) < 1.0e4_wp) then
-            write (buf, '(f0.4)') x
+            write (buf, '(f0.6)') x
             if (buf(1:1) == '.') buf = '0'//trim(buf)
             if (buf(1:2) == '-.') buf = '-0'//buf(2:)
         else
-            write (buf, '(es10.3)') x
+            write (buf, '(es14.6)') x
         end if
         s = trim(adjustl(buf))
     end function num

@@ -16,7 +16,6 @@ module fsym
     use fsym_analysis
     use fsym_fpu
     use fsym_stability_runs
-    use fsym_diagnostics
     ! fsym_stability (linear stability through LAPACK) is not re-exported here, so that
     ! `use fsym` never needs LAPACK: use it by name.
     implicit none

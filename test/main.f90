@@ -11,7 +11,6 @@ program fsym_tests
     use test_badinput, only: collect_badinput
     use test_nbody, only: collect_nbody
     use test_legacy, only: collect_legacy
-    use test_study, only: collect_study
     use test_fastpath, only: collect_fastpath
     implicit none
     type(test_t), allocatable :: tests(:)
@@ -22,7 +21,7 @@ program fsym_tests
     filter = ''
     if (command_argument_count() > 0) call get_command_argument(1, filter)
     tests = [collect_scheme(), collect_kepler(), collect_integrator(), collect_errors(), &
-             collect_nbody(), collect_legacy(), collect_study(), collect_fastpath(), &
+             collect_nbody(), collect_legacy(), collect_fastpath(), &
              collect_stability(), collect_badinput()]
     npass = 0; nfail = 0
     do k = 1, size(tests)
