@@ -2,7 +2,8 @@
 # The test command: installs what is missing, builds, and runs every test.
 #  1. the real clients (F77, C, CMake consumer) built against the installed library
 #     (test/clients/run.sh; the script fails on any mismatch with the modern API);
-#  2. the Fortran suites: fsym-tests (library) and fsym-h5-tests (the programs' HDF5 layer).
+#  2. the Fortran suite fsym-tests (library); the programs' HDF5 layer is tested by the
+#     pFUnit suite in test/h5 (CMake/CTest).
 # The last line sums the suites: `total: N passed, N failed`. Extra arguments (a test-name
 # filter) go to the library suite.
 set -euo pipefail
@@ -14,7 +15,6 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 rc=0
 fpm test --flag "$flags" fsym-tests -- "$@" 2>&1 | tee "$log" || rc=1
-fpm test --flag "$flags" fsym-h5-tests 2>&1 | tee -a "$log" || rc=1
 pass=$(awk '/^[0-9]+ passed, [0-9]+ failed$/ {p += $1} END {print p + 0}' "$log")
 fail=$(awk '/^[0-9]+ passed, [0-9]+ failed$/ {f += $3} END {print f + 0}' "$log")
 [ "$rc" -eq 0 ] || [ "$fail" -gt 0 ] || fail=$((fail + 1))   # a suite that crashed counts
