@@ -206,7 +206,7 @@ contains
         end if
         do k = 1, len_trim(path)
             if (k < len_trim(path) .and. path(k:k) /= '/') cycle
-            if (k == 1) cycle
+            if (k == 1 .and. path(1:1) == '/') cycle
             if (path(k:k) == '/') then
                 call h5lexists_f(self%id, path(1:k - 1), there, ierr)
                 if (ierr == 0 .and. .not. there) call h5gcreate_f(self%id, path(1:k - 1), g, ierr)

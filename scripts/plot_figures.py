@@ -190,8 +190,7 @@ def scan_figure(f, scene, figdir):
         a = float(s.attrs["alpha_least_energy"])
         axs[0].axvline(a, color="tab:red", ls=":", label=f"least at alpha = {a:.3f}")
         a = float(s.attrs["alpha_least_precession"])
-        axs[1].axvline(a, color="tab:red", ls=":", label=f"least |.| at alpha = {a:.3f}")
-        axs[1].set_yscale("symlog", linthresh=1e-2)
+        axs[1].axvline(a, color="tab:red", ls=":", label=f"least |precession| at alpha = {a:.3f}")
     for ax in axs:
         ax.set_xlabel(xl)
         ax.legend(frameon=False, fontsize=8)
