@@ -8,9 +8,11 @@
 !> missing parent groups are created. Datasets: `real(wp)` rank 1-3, default integer and
 !> `integer(ik)` rank 1, written whole (`write`, H5LT) or appended in slabs along the last
 !> Fortran dimension (`append`: chunked, extendible). Attributes on the file (`'/'`), groups
-!> and datasets: string, string 1D, real and integer scalars and 1D.
+!> and datasets: string, string 1D, real and integer scalars and 1D. Text outputs take the
+!> same route: `fsym_open_text` opens the temporary, `fsym_commit_text` closes and renames.
 module fsym_h5
-    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char, c_ptr, c_loc, c_size_t
+    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char, c_ptr, c_loc
+    use, intrinsic :: iso_fortran_env, only: compiler_version, compiler_options
     use hdf5
     use h5lt
     use fsym_kinds, only: wp, ik
@@ -19,7 +21,7 @@ module fsym_h5
     private
 
     public :: h5_file_t, fsym_rename_file, fsym_check_writable, fsym_temp_name
-    public :: fsym_h5_safe_name
+    public :: fsym_h5_safe_name, fsym_open_text, fsym_commit_text, fsym_h5md_header
 
     !> An HDF5 file being written (through a temporary name).
     type :: h5_file_t
@@ -114,6 +116,45 @@ contains
         if (ios /= 0) call fsym_report(FSYM_ERR_IO, 'cannot write '//trim(path), stat, errmsg)
     end subroutine fsym_check_writable
 
+    !> Open a text output under its temporary name (formatted, sequential); on failure
+    !> FSYM_ERR_IO. Finish with `fsym_commit_text`.
+    subroutine fsym_open_text(path, unit, stat, errmsg)
+        character(len=*), intent(in) :: path        !! final name
+        integer, intent(out) :: unit                !! the open unit
+        integer, intent(out) :: stat                !! status
+        character(len=*), intent(inout) :: errmsg   !! message on error
+        integer :: ios
+        open (newunit=unit, file=fsym_temp_name(path), status='replace', action='write', &
+              iostat=ios)
+        stat = FSYM_SUCCESS
+        if (ios /= 0) call fsym_report(FSYM_ERR_IO, 'cannot write '//trim(path), stat, errmsg)
+    end subroutine fsym_open_text
+
+    !> Close a text output opened by `fsym_open_text` and rename it into place; with
+    !> `discard`, delete it instead (the final name is left as it was).
+    subroutine fsym_commit_text(unit, path, stat, errmsg, discard)
+        integer, intent(in) :: unit                 !! the unit from fsym_open_text
+        character(len=*), intent(in) :: path        !! final name
+        integer, intent(out) :: stat                !! status
+        character(len=*), intent(inout) :: errmsg   !! message on error
+        logical, intent(in), optional :: discard    !! delete instead of renaming
+        integer :: ios
+        stat = FSYM_SUCCESS
+        if (present(discard)) then
+            if (discard) then
+                close (unit, status='delete', iostat=ios)
+                return
+            end if
+        end if
+        close (unit, iostat=ios)
+        if (ios /= 0) then
+            if (c_remove(fsym_temp_name(path)//c_null_char) /= 0) continue
+            call fsym_report(FSYM_ERR_IO, 'cannot close '//trim(path), stat, errmsg)
+            return
+        end if
+        call fsym_rename_file(fsym_temp_name(path), path, stat, errmsg)
+    end subroutine fsym_commit_text
+
     !> A label as a safe HDF5 link name: `/` -> `_`, `'` -> `p` (prime), other characters
     !> outside [A-Za-z0-9_.()+,-] -> `_`. Programs keep the label itself in an attribute.
     pure function fsym_h5_safe_name(label) result(name)
@@ -132,6 +173,43 @@ contains
             end if
         end do
     end function fsym_h5_safe_name
+
+    !> The H5MD 1.1 header every program writes: `h5md` (version, author, creator), the units
+    !> module with the unit system, and in `parameters` the unit system, compiler, compiler
+    !> flags, the git commit (environment variable FSYM_GIT_COMMIT, set by the scripts) and
+    !> the library version.
+    subroutine fsym_h5md_header(f, creator, version, unit_system, stat, errmsg)
+        class(h5_file_t), intent(inout) :: f        !! the file
+        character(len=*), intent(in) :: creator     !! program name
+        character(len=*), intent(in) :: version     !! library version
+        character(len=*), intent(in) :: unit_system !! the units, in words
+        integer, intent(out) :: stat                !! status
+        character(len=*), intent(inout) :: errmsg   !! message on error
+        character(len=128) :: commit
+        integer :: ln, st
+        call get_environment_variable('FSYM_GIT_COMMIT', commit, ln, st)
+        if (st /= 0 .or. ln == 0) commit = 'unknown (set FSYM_GIT_COMMIT)'
+        call f%set_attr('h5md', 'version', [1, 1], stat, errmsg)
+        if (stat == FSYM_SUCCESS) call f%set_attr('h5md/author', 'name', &
+                                                  'forward-symplectic developers', stat, errmsg)
+        if (stat == FSYM_SUCCESS) call f%set_attr('h5md/creator', 'name', creator, stat, errmsg)
+        if (stat == FSYM_SUCCESS) call f%set_attr('h5md/creator', 'version', version, stat, &
+                                                  errmsg)
+        if (stat == FSYM_SUCCESS) call f%set_attr('h5md/modules/units', 'version', [1, 0], &
+                                                  stat, errmsg)
+        if (stat == FSYM_SUCCESS) call f%set_attr('h5md/modules/units', 'system', unit_system, &
+                                                  stat, errmsg)
+        if (stat == FSYM_SUCCESS) call f%set_attr('parameters', 'unit_system', unit_system, &
+                                                  stat, errmsg)
+        if (stat == FSYM_SUCCESS) call f%set_attr('parameters', 'compiler', &
+                                                  compiler_version(), stat, errmsg)
+        if (stat == FSYM_SUCCESS) call f%set_attr('parameters', 'compiler_flags', &
+                                                  compiler_options(), stat, errmsg)
+        if (stat == FSYM_SUCCESS) call f%set_attr('parameters', 'git_commit', trim(commit), &
+                                                  stat, errmsg)
+        if (stat == FSYM_SUCCESS) call f%set_attr('parameters', 'library_version', version, &
+                                                  stat, errmsg)
+    end subroutine fsym_h5md_header
 
     !> Create the file under its temporary name (any earlier file at `path` stays until
     !> `close`).

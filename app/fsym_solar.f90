@@ -9,6 +9,7 @@ program fsym_solar
     use fsym
     use fsym_solar_data, only: solar_data_t, read_solar_data
     use fsym_solar_output, only: solar_results_t, write_solar_markdown, write_solar_h5
+    use fsym_h5, only: fsym_check_writable
     implicit none
     character(len=4), parameter :: methods(6) = [character(len=4) :: 'FR', 'A', 'A''', 'C', &
                                                  'A6', 'BM']
@@ -31,6 +32,11 @@ program fsym_solar
     if (command_argument_count() >= 2) call get_command_argument(2, md_path)
     if (command_argument_count() >= 3) call get_command_argument(3, h5_path)
 
+    ! both outputs are written through a temporary name and renamed: check them first
+    call fsym_check_writable(trim(md_path), st, msg)
+    if (st /= 0) call fail(msg)
+    call fsym_check_writable(trim(h5_path), st, msg)
+    if (st /= 0) call fail(msg)
     call read_solar_data(trim(data_path), dat, st, msg)
     if (st /= 0) call fail(msg)
     call model%init(dat%m, dat%g, stat=st, errmsg=msg)
@@ -89,7 +95,7 @@ program fsym_solar
     call write_solar_markdown(trim(md_path), trim(data_path), res, st, msg)
     if (st /= 0) call fail(msg)
     write (output_unit, '(a)') 'wrote '//trim(md_path)
-    call write_solar_h5(trim(h5_path), res, st, msg)
+    call write_solar_h5(trim(h5_path), res, FSYM_VERSION, st, msg)
     if (st /= 0) call fail(msg)
     write (output_unit, '(a)') 'wrote '//trim(h5_path)
 

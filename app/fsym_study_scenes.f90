@@ -6,11 +6,10 @@
 !> scripts/report_results.py). Arithmetic comes from the library; this module only drives
 !> it. Scenes share no module variables: the run's settings travel in a `study_t`.
 module fsym_study_scenes
-    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, compiler_version, &
-                                             compiler_options
+    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
     use fsym
-    use fsym_h5, only: h5_file_t, fsym_h5_safe_name
+    use fsym_h5, only: h5_file_t, fsym_h5_safe_name, fsym_h5md_header
     use fsym_diagnostics, only: coefficient_tracker_t
     implicit none
     private
@@ -209,33 +208,16 @@ contains
         type(h5_file_t), intent(inout) :: f
         character(len=*), intent(in) :: scene
         real(wp), intent(in) :: eps
-        character(len=128) :: commit
-        integer :: st, ln
+        integer :: st
         character(len=256) :: msg
-        call f%set_attr('h5md', 'version', [1, 1], st, msg); call need(st, msg)
-        call f%set_attr('h5md/author', 'name', 'forward-symplectic developers', st, msg)
+        call fsym_h5md_header(f, 'fsym-study', FSYM_VERSION, UNIT_SYSTEM, st, msg)
         call need(st, msg)
-        call f%set_attr('h5md/creator', 'name', 'fsym-study', st, msg); call need(st, msg)
-        call f%set_attr('h5md/creator', 'version', FSYM_VERSION, st, msg); call need(st, msg)
-        call f%set_attr('h5md/modules/units', 'version', [1, 0], st, msg); call need(st, msg)
-        call f%set_attr('h5md/modules/units', 'system', UNIT_SYSTEM, st, msg)
-        call need(st, msg)
-        call get_environment_variable('FSYM_GIT_COMMIT', commit, ln, st)
-        if (st /= 0 .or. ln == 0) commit = 'unknown (set FSYM_GIT_COMMIT)'
         call f%set_attr('parameters', 'scene', scene, st, msg); call need(st, msg)
         call f%set_attr('parameters', 'eps', eps, st, msg); call need(st, msg)
         call f%set_attr('parameters', 'period', cx%period, st, msg); call need(st, msg)
         call f%set_attr('parameters', 'mu', cx%kep%mu, st, msg); call need(st, msg)
         call f%set_attr('parameters', 'q0', cx%q0, st, msg); call need(st, msg)
         call f%set_attr('parameters', 'v0', cx%v0, st, msg); call need(st, msg)
-        call f%set_attr('parameters', 'unit_system', UNIT_SYSTEM, st, msg); call need(st, msg)
-        call f%set_attr('parameters', 'compiler', compiler_version(), st, msg)
-        call need(st, msg)
-        call f%set_attr('parameters', 'compiler_flags', compiler_options(), st, msg)
-        call need(st, msg)
-        call f%set_attr('parameters', 'git_commit', trim(commit), st, msg); call need(st, msg)
-        call f%set_attr('parameters', 'library_version', FSYM_VERSION, st, msg)
-        call need(st, msg)
     end subroutine file_header
 
     !> H5MD box of a particle group (open 2D space) and its `label`.

@@ -5,10 +5,12 @@ Usage:
   check_h5md.py FILE.h5 ...                 check the given files
   check_h5md.py --run PROGRAM --out DIR     run `PROGRAM --out DIR` (no shell), then check
                                             every *.h5 file it wrote into DIR
+  check_h5md.py --in DIR -- PROGRAM ARG...  run the command (no shell; `{out}` in an argument
+                                            becomes DIR), then check every *.h5 in DIR
 
 Checks, per file: the `h5md` group (version [1, 1], author/name, creator/name and version),
-the units module (version, system); a `parameters` group with the run's settings (scene, eps,
-mu, q0, v0, unit system, compiler, flags, git commit); every particle group has a `label`, a
+the units module (version, system); a `parameters` group with the run's settings (unit
+system, compiler, flags, git commit; for the study's scenes also scene, eps, mu, q0, v0); every particle group has a `label`, a
 safe name, a `box` with a scalar integer `dimension` and a `boundary` of that many entries
 ("none" or "periodic"), and its settings in `parameters/<name>`; every time series
 (`value` with `step`/`time`) has matching lengths, integer steps and float times; every
@@ -33,8 +35,8 @@ except ImportError as exc:  # pragma: no cover - depends on the environment
     sys.exit(77)
 
 SAFE = re.compile(r"^[A-Za-z0-9_.()+,\-]+$")
-PARAMETERS = ["eps", "mu", "q0", "v0", "unit_system", "compiler", "compiler_flags",
-              "git_commit"]
+PARAMETERS = ["unit_system", "compiler", "compiler_flags", "git_commit"]
+SCENE_PARAMETERS = ["eps", "mu", "q0", "v0"]
 UNIT_NAMES = ("time", "position", "velocity")
 
 
@@ -79,8 +81,9 @@ def check_file(path):
                 need("version" in u and "system" in u, "units module lacks version or system")
         need("parameters" in f, "no /parameters group")
         if "parameters" in f:
-            for key in PARAMETERS:
-                need(key in f["parameters"].attrs, f"parameters lacks {key}")
+            pa = f["parameters"].attrs
+            for key in PARAMETERS + (SCENE_PARAMETERS if "scene" in pa else []):
+                need(key in pa, f"parameters lacks {key}")
         if "particles" in f:
             for name, g in f["particles"].items():
                 where = f"particles/{name}"
@@ -126,9 +129,10 @@ def check_file(path):
             if isinstance(obj, h5py.Dataset):
                 base = name.split("/")[-1]
                 parent = name.split("/")[-2] if "/" in name else ""
-                wants = (base in UNIT_NAMES or "energy" in base
-                         or (base == "value" and (parent in UNIT_NAMES or "energy" in parent
-                                                  or "coefficient" in parent)))
+                h5md_element = name.startswith(("particles/", "observables/"))
+                wants = (base in UNIT_NAMES
+                         or (h5md_element and base == "value")
+                         or (h5md_element and "energy" in base))
                 if wants:
                     need("unit" in obj.attrs, f"{name}: no unit attribute")
 
@@ -138,7 +142,24 @@ def check_file(path):
 
 def main(argv):
     files = []
-    if argv[:1] == ["--run"]:
+    if argv[:1] == ["--in"]:
+        if len(argv) < 4 or argv[2] != "--":
+            sys.exit("usage: check_h5md.py --in DIR -- PROGRAM ARG...")
+        out = argv[1]
+        shutil.rmtree(out, ignore_errors=True)
+        os.makedirs(out)
+        env = dict(os.environ, FSYM_GIT_COMMIT=os.environ.get("FSYM_GIT_COMMIT", "test"))
+        cmd = [a.replace("{out}", out) for a in argv[3:]]
+        r = subprocess.run(cmd, env=env)
+        if r.returncode != 0:
+            print(f"FAIL: {cmd[0]} exited with {r.returncode}")
+            return 1
+        files = sorted(glob.glob(os.path.join(out, "*.h5")))
+        left = glob.glob(os.path.join(out, "*.part"))
+        if left or not files:
+            print(f"FAIL: temporary files left ({left}) or no .h5 file in {out}")
+            return 1
+    elif argv[:1] == ["--run"]:
         if len(argv) < 4 or argv[2] != "--out":
             sys.exit("usage: check_h5md.py --run PROGRAM --out DIR")
         prog, out = argv[1], argv[3]

@@ -6,6 +6,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 FSYM_PLOTS=1 source scripts/setup.sh
 mkdir -p out doc/figures
-fpm run --profile release --flag "-std=f2008 -O3" fsym-stability -- --out out/stability.h5 \
+FSYM_GIT_COMMIT=$(git rev-parse HEAD 2>/dev/null || echo unknown)
+export FSYM_GIT_COMMIT
+fpm run --profile release --flag "-std=f2008 -O3 -ffp-contract=off" fsym-stability -- --out out/stability.h5 \
     --doc doc/stability.md "$@"
 "$FSYM_PYTHON" scripts/plot_stability.py out/stability.h5 doc/figures
+"$FSYM_PYTHON" scripts/check_h5md.py out/stability.h5
