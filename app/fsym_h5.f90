@@ -22,6 +22,7 @@ module fsym_h5
 
     public :: h5_file_t, fsym_rename_file, fsym_check_writable, fsym_temp_name
     public :: fsym_h5_safe_name, fsym_open_text, fsym_commit_text, fsym_h5md_header
+    public :: fsym_make_dir
 
     !> An HDF5 file being written (through a temporary name).
     type :: h5_file_t
@@ -45,18 +46,28 @@ module fsym_h5
     interface
         function c_rename(old, new) bind(C, name='rename') result(r)
             import :: c_char, c_int
+            implicit none
             character(kind=c_char), intent(in) :: old(*), new(*)
             integer(c_int) :: r
         end function c_rename
         function c_remove(name) bind(C, name='remove') result(r)
             import :: c_char, c_int
+            implicit none
             character(kind=c_char), intent(in) :: name(*)
             integer(c_int) :: r
         end function c_remove
         function c_getpid() bind(C, name='getpid') result(r)
             import :: c_int
+            implicit none
             integer(c_int) :: r
         end function c_getpid
+        function c_mkdir(path, mode) bind(C, name='mkdir') result(r)
+            import :: c_char, c_int
+            implicit none
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int), value :: mode
+            integer(c_int) :: r
+        end function c_mkdir
     end interface
 
 contains
@@ -108,12 +119,15 @@ contains
         character(len=*), intent(in) :: path        !! output file to be written later
         integer, intent(out) :: stat                !! FSYM_ERR_IO when it cannot be
         character(len=*), intent(inout) :: errmsg   !! message on error
-        integer :: u, ios
+        integer :: u, ios, ios2
         open (newunit=u, file=fsym_temp_name(path), status='replace', action='write', &
               iostat=ios)
-        if (ios == 0) close (u, status='delete', iostat=ios)
+        ios2 = 0
+        if (ios == 0) close (u, status='delete', iostat=ios2)
         stat = FSYM_SUCCESS
-        if (ios /= 0) call fsym_report(FSYM_ERR_IO, 'cannot write '//trim(path), stat, errmsg)
+        if (ios /= 0 .or. ios2 /= 0) then
+            call fsym_report(FSYM_ERR_IO, 'cannot write '//trim(path), stat, errmsg)
+        end if
     end subroutine fsym_check_writable
 
     !> Open a text output under its temporary name (formatted, sequential); on failure
@@ -143,6 +157,8 @@ contains
         if (present(discard)) then
             if (discard) then
                 close (unit, status='delete', iostat=ios)
+                if (ios /= 0) call fsym_report(FSYM_ERR_IO, 'cannot delete the temporary of '// &
+                                               trim(path), stat, errmsg)
                 return
             end if
         end if
@@ -154,6 +170,19 @@ contains
         end if
         call fsym_rename_file(fsym_temp_name(path), path, stat, errmsg)
     end subroutine fsym_commit_text
+
+    !> Create a directory and its missing parents (mode 755, `mkdir(2)`, no shell); an
+    !> existing directory is fine. The caller checks writability (`fsym_check_writable`).
+    subroutine fsym_make_dir(path)
+        character(len=*), intent(in) :: path        !! directory
+        integer :: k
+        do k = 2, len_trim(path) + 1
+            if (k <= len_trim(path)) then
+                if (path(k:k) /= '/') cycle
+            end if
+            if (c_mkdir(path(1:k - 1)//c_null_char, int(o'755', c_int)) /= 0) continue
+        end do
+    end subroutine fsym_make_dir
 
     !> A label as a safe HDF5 link name: `/` -> `_`, `'` -> `p` (prime), other characters
     !> outside [A-Za-z0-9_.()+,-] -> `_`. Programs keep the label itself in an attribute.

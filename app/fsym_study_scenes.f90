@@ -7,9 +7,9 @@
 !> it. Scenes share no module variables: the run's settings travel in a `study_t`.
 module fsym_study_scenes
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
-    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
     use fsym
-    use fsym_h5, only: h5_file_t, fsym_h5_safe_name, fsym_h5md_header
+    use fsym_h5, only: h5_file_t, fsym_h5_safe_name, fsym_h5md_header, fsym_make_dir, &
+                       fsym_check_writable
     use fsym_diagnostics, only: coefficient_tracker_t
     implicit none
     private
@@ -51,15 +51,6 @@ module fsym_study_scenes
         real(wp) :: pend2 = 0.0_wp    ! precession coefficient at t = 2P
     end type summary_t
 
-    interface
-        function c_mkdir(path, mode) bind(C, name='mkdir') result(r)
-            import :: c_char, c_int
-            character(kind=c_char), intent(in) :: path(*)
-            integer(c_int), value :: mode
-            integer(c_int) :: r
-        end function c_mkdir
-    end interface
-
 contains
 
     !> Settings for a run writing into `out` (created with its parents when missing, by
@@ -67,18 +58,13 @@ contains
     subroutine study_init(cx, out)
         type(study_t), intent(out) :: cx         !! the settings
         character(len=*), intent(in) :: out      !! directory for the HDF5 files
-        integer :: k, ios
+        integer :: st
+        character(len=256) :: msg
         cx%outdir = trim(out)
         call kepler_paper_orbit(cx%q0, cx%v0, cx%period)
-        do k = 2, len(cx%outdir) + 1
-            if (k <= len(cx%outdir)) then
-                if (cx%outdir(k:k) /= '/') cycle
-            end if
-            if (c_mkdir(cx%outdir(1:k - 1)//c_null_char, int(o'755', c_int)) /= 0) continue
-        end do
-        open (newunit=k, file=cx%outdir//'/.fsym-study-probe', status='replace', iostat=ios)
-        if (ios == 0) close (k, status='delete', iostat=ios)
-        if (ios /= 0) call study_die('cannot write into the output directory '//cx%outdir)
+        call fsym_make_dir(cx%outdir)
+        call fsym_check_writable(cx%outdir//'/results.h5', st, msg)
+        if (st /= 0) call study_die('cannot write into the output directory '//cx%outdir)
     end subroutine study_init
 
     !> Run one scene by name.
