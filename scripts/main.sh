@@ -18,4 +18,10 @@ export FSYM_GIT_COMMIT
 fpm run --profile release --flag "-std=f2008 -O3 -ffp-contract=off" fsym-study -- "$@"
 if [ -e "$out/results.h5" ]; then "$FSYM_PYTHON" scripts/report_results.py "$out" doc/results.md; fi
 "$FSYM_PYTHON" scripts/plot_figures.py "$out" doc/figures
-"$FSYM_PYTHON" scripts/check_h5md.py "$out"/*.h5     # H5MD 1.1 conformance of every file
+# H5MD 1.1 conformance of every file the study wrote (its scenes; other programs' files in
+# the same directory are checked by their own scripts)
+files=()
+for scene in $(fpm run --profile release --flag "-std=f2008 -O3 -ffp-contract=off" fsym-study -- --list 2>/dev/null); do
+    if [ -e "$out/$scene.h5" ]; then files+=("$out/$scene.h5"); fi
+done
+"$FSYM_PYTHON" scripts/check_h5md.py "${files[@]}"
