@@ -24,6 +24,31 @@ PAPER = ("S. A. Chin, *Forward and non-forward symplectic integrators in solving
          "doi:10.1080/00207160701458476, arXiv:0704.3273")
 
 
+REFERENCES = [
+    PAPER + " (the study repeated here; A, A', C, AN, M1, M2, GFR5).",
+    "S. A. Chin, *Symplectic integrators from composite operator factorizations*, Phys. "
+    "Lett. A 226, 344-348 (1997) (algorithms A and C).",
+    "E. Forest and R. D. Ruth, *Fourth-order symplectic integration*, Physica D 43, 105-117 "
+    "(1990) (FR).",
+    "M. Creutz and A. Gocksch, *Higher-order hybrid Monte Carlo algorithms*, Phys. Rev. "
+    "Lett. 63, 9-12 (1989) (FR; GFR5(1)).",
+    "M. Suzuki, *Fractal decomposition of exponential operators with applications to "
+    "many-body theories and Monte Carlo simulations*, Phys. Lett. A 146, 319-323 (1990) "
+    "(GFR5(1)).",
+    "R. I. McLachlan, *On the numerical integration of ordinary differential equations by "
+    "symmetric composition methods*, SIAM J. Sci. Comput. 16, 151-168 (1995) (M1).",
+    "S. Blanes and P. C. Moan, *Practical symplectic partitioned Runge-Kutta and "
+    "Runge-Kutta-Nystrom methods*, J. Comput. Appl. Math. 142, 313-330 (2002) (BM, BM-mf, "
+    "SRKN6b).",
+    "I. P. Omelyan, I. M. Mryglod and R. Folk, *Optimized Forest-Ruth- and Suzuki-like "
+    "algorithms for integration of motion in many-body systems*, Comput. Phys. Commun. 146, "
+    "188-202 (2002), and *Symplectic analytically integrable decomposition algorithms: "
+    "classification, derivation, and application to molecular dynamics, quantum and "
+    "celestial mechanics simulations*, Comput. Phys. Commun. 151, 272-314 (2003) (the "
+    "extrapolated gradient of A', C', AN').",
+]
+
+
 def text(x):
     return x.decode() if isinstance(x, bytes) else str(x)
 
@@ -303,7 +328,8 @@ def main():
                  f"{'yes' if holds else '**does not hold**'} |")
     n_ok = sum(1 for r in claims.rows if r[3])
     L += ["", f"{n_ok} of {len(claims.rows)} statements hold by this rule; the others are "
-          "marked **does not hold**."]
+          "marked **does not hold**.", "", "## References", ""]
+    L += [f"- {r}" for r in REFERENCES]
     write(md, L)
     print(f"[report] {md}: {len(s.labels)} methods, {n_ok}/{len(claims.rows)} claims hold")
     for sec, claim, measured, holds, rule in claims.rows:

@@ -123,6 +123,12 @@ def report(data, md, figdir):
          "that bracket the target. The machine was shared with other jobs while this ran; "
          f"time ratios within {100 * NOISE:.0f} % are called a tie.", "",
          "## Setup", "",
+         "- Methods: the library's catalogue (see doc/results.md for each method's source) "
+         "and RKN; the forward/non-forward comparison is that of S. A. Chin, *Forward and "
+         "non-forward symplectic integrators in solving classical dynamics problems*, Int. J. "
+         "Comput. Math. 84(6), 729-747 (2007), doi:10.1080/00207160701458476, "
+         "arXiv:0704.3273. The e = 0.6 orbit is from E. Hairer, C. Lubich and G. Wanner, "
+         "*Geometric Numerical Integration*, 2nd ed., Springer (2006).",
          "- Orbits (Kepler, G M = 1): " + "; ".join(
              f"{o['description']}" for o in data["orbits"]) + ". The e = 0.9 orbit is the "
          "paper's q = (10, 0), v = (0, 0.1); the e = 0.6 orbit is q = (0.4, 0), v = (0, 2) "
