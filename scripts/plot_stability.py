@@ -83,6 +83,7 @@ def main():
             ax.plot(s[:, 0], s[:, 2:].sum(axis=1), "k", lw=0.9, label="I")
             ax.set_title(f"{m}, h = 0.5 x*/omega", fontsize=9)
             ax.legend(fontsize=7)
+            ax.set_ylabel("oscillatory energy (I_j / I_1(0))")
         for ax in axes[1]:
             ax.set_xlabel("t")
         fig.suptitle("FPU (omega = 50): oscillatory energies of the stiff springs")
