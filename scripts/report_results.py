@@ -207,6 +207,9 @@ def build_claims(s, out):
     c.about(sec, "GFR5: the precession error is smallest at alpha = 1",
             abs(pm[np.argmin(abs(al - 1))]) / abs(pm).min(), 1,
             f"|precession| at 1 over the least (at alpha = {al[np.argmin(abs(pm))]:.3f})")
+    r = max(reldiff(s.at("GFR5(0)", k), s.at("FR", k)) for k in ("emax", "pP"))
+    c.about(sec, "GFR5 at alpha = 0 reproduces FR", 1 + r, 1,
+            "1 + largest relative difference of the coefficients, GFR5(0) vs FR")
     c.more(sec, "A5's precession error more than 4 times smaller than C's",
            s.P("C") / s.P("A5"), 4, "ratio C/A5")
     c.about(sec, "A5's precession error 200 times smaller than GFR5(alpha = 1)'s",
@@ -239,6 +242,16 @@ def build_claims(s, out):
                f("BM-mf") / f("BM"), FACTOR, "ratio BM-mf/BM")
 
     sec = "1, 5. Introduction and conclusions"
+    for key, name in (("E", "energy"), ("P", "precession")):
+        f = getattr(s, key)
+        c.more(sec, f"fourth-order forward algorithms are far more accurate than second-order "
+               f"ones ({name}, A against T2 at the same step)", f("T2") / f("A"), FACTOR,
+               "ratio T2/A of the errors (coefficient ratio, both scaled by eps^4)")
+    for key, name in (("E", "energy"), ("P", "precession")):
+        f = getattr(s, key)
+        c.more(sec, f"forward algorithms are superior to Runge-Kutta-Nystrom on the Kepler "
+               f"problem ({name}, A against RKN, three evaluations each)", f("RKN") / f("A"), 1,
+               "ratio RKN/A")
     pairs = [("FR", "GFR5(1)"), ("M1", "M1(-1/24)"), ("M2(-0.1)", "M2(-0.5)"),
              ("GFR5(0.3)", "GFR5(1)")]
     worst = min(min(s.E(a) / s.E(b), s.P(a) / s.P(b)) for a, b in pairs)
