@@ -47,7 +47,7 @@ def group(f, where, label):
 
 def save(fig, figdir, name):
     fig.savefig(os.path.join(figdir, name + ".png"), dpi=110)
-    fig.savefig(os.path.join(figdir, name + ".pdf"))
+    fig.savefig(os.path.join(figdir, name + ".pdf"), metadata={"CreationDate": None})
     plt.close(fig)
 
 

@@ -31,7 +31,8 @@ def finish(fig, ax, out, name, xlabel, ylabel, title):
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(os.path.join(out, name), dpi=120)
-    fig.savefig(os.path.join(out, os.path.splitext(name)[0] + ".pdf"))
+    fig.savefig(os.path.join(out, os.path.splitext(name)[0] + ".pdf"),
+                metadata={"CreationDate": None})
     plt.close(fig)
 
 
@@ -89,7 +90,8 @@ def main():
         fig.suptitle("FPU (omega = 50): oscillatory energies of the stiff springs")
         fig.tight_layout()
         fig.savefig(os.path.join(out, "stability_fpu_exchange.png"), dpi=120)
-        fig.savefig(os.path.join(out, "stability_fpu_exchange.pdf"))
+        fig.savefig(os.path.join(out, "stability_fpu_exchange.pdf"),
+                    metadata={"CreationDate": None})
         plt.close(fig)
 
         # 4. FPU scan

@@ -206,7 +206,7 @@ def report(data, md, figdir):
 
 def save(fig, figdir, name):
     fig.savefig(os.path.join(figdir, name + ".png"), dpi=100)
-    fig.savefig(os.path.join(figdir, name + ".pdf"))
+    fig.savefig(os.path.join(figdir, name + ".pdf"), metadata={"CreationDate": None})
     plt.close(fig)
 
 
