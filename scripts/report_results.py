@@ -12,6 +12,9 @@ import os
 import sys
 
 import h5py
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from fsym_report import text, write_atomic  # noqa: E402
 import numpy as np
 
 FACTOR = 1.5  # the one rule: "about k times" holds for k/FACTOR <= ratio <= k*FACTOR
@@ -47,10 +50,6 @@ REFERENCES = [
     "celestial mechanics simulations*, Comput. Phys. Commun. 151, 272-314 (2003) (the "
     "extrapolated gradient of A', C', AN').",
 ]
-
-
-def text(x):
-    return x.decode() if isinstance(x, bytes) else str(x)
 
 
 def g7(x):
@@ -278,13 +277,6 @@ def build_claims(s, out):
     return c
 
 
-def write(path, lines):
-    tmp = f"{path}.{os.getpid()}.part"
-    with open(tmp, "w") as fh:
-        fh.write("\n".join(lines) + "\n")
-    os.replace(tmp, path)
-
-
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "out"
     md = sys.argv[2] if len(sys.argv) > 2 else os.path.join("doc", "results.md")
@@ -343,7 +335,7 @@ def main():
     L += ["", f"{n_ok} of {len(claims.rows)} statements hold by this rule; the others are "
           "marked **does not hold**.", "", "## References", ""]
     L += [f"- {r}" for r in REFERENCES]
-    write(md, L)
+    write_atomic(md, L)
     print(f"[report] {md}: {len(s.labels)} methods, {n_ok}/{len(claims.rows)} claims hold")
     for sec, claim, measured, holds, rule in claims.rows:
         if not holds:

@@ -12,9 +12,8 @@ import sys
 
 import h5py
 
-
-def text(x):
-    return x.decode() if isinstance(x, bytes) else str(x)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from fsym_report import text, write_atomic  # noqa: E402
 
 
 def main():
@@ -63,10 +62,7 @@ def main():
           "the datasets `phase_space_error`, `max_position_error`, "
           "`max_relative_energy_error`, `force_evaluations`, `gradient_evaluations`, "
           "`seconds` (one value per step) and `q_end`, `v_end` (3 x bodies x steps))."]
-    tmp = f"{md}.{os.getpid()}.part"
-    with open(tmp, "w") as fh:
-        fh.write("\n".join(L) + "\n")
-    os.replace(tmp, md)
+    write_atomic(md, L)
     print(f"[solar] wrote {md}")
 
 

@@ -15,6 +15,9 @@ import os
 import sys
 
 import h5py
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from fsym_report import text, write_atomic  # noqa: E402
 import matplotlib
 import numpy as np
 
@@ -32,10 +35,6 @@ PANELS = [
 COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
            "tab:pink", "black"]
 MARKERS = ["o", "s", "^", "v", "D", "P", "X", "*"]
-
-
-def text(x):
-    return x.decode() if isinstance(x, bytes) else str(x)
 
 
 def load(path):
@@ -197,10 +196,7 @@ def report(data, md, figdir):
         L += [f"- Forward methods among the five fastest: "
               f"{sum(1 for r in top if r[1]['forward'] and r[0] != 'RKN')}.", ""]
     L += [f"Entries not interpolated (bounded or unreached): {bounded}."]
-    tmp = f"{md}.{os.getpid()}.part"
-    with open(tmp, "w") as fh:
-        fh.write("\n".join(L) + "\n")
-    os.replace(tmp, md)
+    write_atomic(md, L)
     return bounded
 
 
