@@ -1,19 +1,21 @@
 !> The outer solar system (Hairer, Lubich, Wanner) over 500 000 days with FR, A, A', C, A6 and
 !> BM at several steps: phase-space error against the reference state in the data file, max
-!> relative energy error, force and gradient evaluations, run time. Writes a markdown table
-!> (default `doc/solar-system.md`) and an HDF5 file (default `out/solar.h5`).
+!> relative energy error, force and gradient evaluations, run time. Writes an HDF5 file
+!> (default `out/solar.h5`, checked writable before the work, written through a temporary
+!> name); scripts/report_solar.py renders doc/solar-system.md from it.
 !>
-!> Usage: fsym-solar [data-file [markdown-file [hdf5-file]]]
+!> Usage: fsym-solar [data-file [hdf5-file]]
 program fsym_solar
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
     use fsym
     use fsym_solar_data, only: solar_data_t, read_solar_data
-    use fsym_solar_output, only: solar_results_t, write_solar_markdown, write_solar_h5
+    use fsym_solar_output, only: solar_results_t, write_solar_h5
+    use fsym_h5, only: fsym_check_writable
     implicit none
     character(len=4), parameter :: methods(6) = [character(len=4) :: 'FR', 'A', 'A''', 'C', &
                                                  'A6', 'BM']
     real(wp), parameter :: steps(6) = [100.0_wp, 50.0_wp, 20.0_wp, 10.0_wp, 5.0_wp, 2.0_wp]
-    character(len=512) :: data_path, md_path, h5_path
+    character(len=512) :: data_path, h5_path
     character(len=256) :: msg
     type(solar_data_t) :: dat
     type(solar_results_t) :: res
@@ -25,12 +27,13 @@ program fsym_solar
     integer :: km, kh, k, nstep, st
 
     data_path = 'data/outer_solar_system.txt'
-    md_path = 'doc/solar-system.md'
     h5_path = 'out/solar.h5'
     if (command_argument_count() >= 1) call get_command_argument(1, data_path)
-    if (command_argument_count() >= 2) call get_command_argument(2, md_path)
-    if (command_argument_count() >= 3) call get_command_argument(3, h5_path)
+    if (command_argument_count() >= 2) call get_command_argument(2, h5_path)
 
+    ! the output is written through a temporary name and renamed: check it first
+    call fsym_check_writable(trim(h5_path), st, msg)
+    if (st /= 0) call fail(msg)
     call read_solar_data(trim(data_path), dat, st, msg)
     if (st /= 0) call fail(msg)
     call model%init(dat%m, dat%g, stat=st, errmsg=msg)
@@ -86,10 +89,7 @@ program fsym_solar
         end do
     end do
 
-    call write_solar_markdown(trim(md_path), trim(data_path), res, st, msg)
-    if (st /= 0) call fail(msg)
-    write (output_unit, '(a)') 'wrote '//trim(md_path)
-    call write_solar_h5(trim(h5_path), res, st, msg)
+    call write_solar_h5(trim(h5_path), trim(data_path), res, FSYM_VERSION, st, msg)
     if (st /= 0) call fail(msg)
     write (output_unit, '(a)') 'wrote '//trim(h5_path)
 

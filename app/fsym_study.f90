@@ -1,8 +1,11 @@
-!> The main job: the paper's study of forward and non-forward integrators on the e = 0.9
-!> Kepler orbit. One scene per figure of the paper, each written to `<out>/<scene>.h5`
-!> (H5MD-like layout, see doc/h5-layout.md), and the results report `doc/results.md`.
+!> The main job: the study of S. A. Chin, *Forward and non-forward symplectic integrators in
+!> solving classical dynamics problems*, Int. J. Comput. Math. 84(6), 729-747 (2007),
+!> doi:10.1080/00207160701458476, arXiv:0704.3273, on its e = 0.9 Kepler orbit. One scene
+!> per figure of the paper, each written to `<out>/<scene>.h5` (H5MD 1.1, see
+!> doc/h5-layout.md); the `results` scene writes `<out>/results.h5`, from which
+!> scripts/report_results.py renders doc/results.md.
 !>
-!>     fsym-study [--all] [--scene NAME]... [--out DIR] [--results FILE] [--list]
+!>     fsym-study [--all] [--scene NAME]... [--out DIR] [--list]
 !>
 !> Coefficient scenes (eng*) record the energy and precession error coefficients of every
 !> step over two periods at eps = P/5000 and no force points; force-point scenes (back*)
@@ -11,14 +14,15 @@
 !> over alpha (least energy and least precession error). Default: `--all`.
 program fsym_study
     use, intrinsic :: iso_fortran_env, only: output_unit
-    use fsym_study_scenes, only: SCENES, study_init, study_scene, study_say, study_die
+    use fsym_study_scenes, only: SCENES, study_t, study_init, study_scene, study_say, &
+                                 study_die
     implicit none
-    character(len=512) :: arg, val, outdir, results
+    character(len=512) :: arg, val, outdir
+    type(study_t) :: cx
     logical :: want(size(SCENES)), any_scene
     integer :: i, j, n
 
     outdir = 'out'
-    results = 'doc/results.md'
     want = .false.
     any_scene = .false.
     n = command_argument_count()
@@ -32,14 +36,12 @@ program fsym_study
         case ('--list')
             write (output_unit, '(a)') (trim(SCENES(j)), j=1, size(SCENES))
             stop
-        case ('--scene', '--out', '--results')
+        case ('--scene', '--out')
             if (i == n) call study_die(trim(arg)//' needs a value')
             i = i + 1
             call get_command_argument(i, val)
             if (arg == '--out') then
                 outdir = val
-            else if (arg == '--results') then
-                results = val
             else
                 any_scene = .true.
                 j = scene_index(val)
@@ -48,16 +50,16 @@ program fsym_study
             end if
         case ('-h', '--help')
             write (output_unit, '(a)') 'usage: fsym-study [--all] [--scene NAME]... '// &
-                '[--out DIR] [--results FILE] [--list]'
+                '[--out DIR] [--list]'
             stop
         case default
             call study_die('unknown argument "'//trim(arg)//'"')
         end select
     end do
     if (.not. any_scene) want = .true.
-    call study_init(outdir, results)
+    call study_init(cx, trim(outdir))
     do j = 1, size(SCENES)
-        if (want(j)) call study_scene(SCENES(j))
+        if (want(j)) call study_scene(cx, SCENES(j))
     end do
     call study_say('done')
 

@@ -1,10 +1,16 @@
-!> The scenes of the paper's study (see `fsym_study`): each computes what one figure needs
-!> and writes `<out>/<scene>.h5` (layout in doc/h5-layout.md); the `results` scene writes the
-!> report doc/results.md. Arithmetic comes from the library; this module only drives it.
+!> The scenes of the study of S. A. Chin, *Forward and non-forward symplectic integrators in
+!> solving classical dynamics problems*, Int. J. Comput. Math. 84(6), 729-747 (2007),
+!> doi:10.1080/00207160701458476, arXiv:0704.3273 (see `fsym_study`). Each scene computes
+!> what one figure needs and writes `<out>/<scene>.h5` (layout in doc/h5-layout.md); the
+!> `results` scene writes `<out>/results.h5`, the numbers behind doc/results.md (rendered by
+!> scripts/report_results.py). Arithmetic comes from the library; this module only drives
+!> it. Scenes share no module variables: the run's settings travel in a `study_t`.
 module fsym_study_scenes
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use fsym
-    use fsym_h5, only: h5_file_t, fsym_rename_file
+    use fsym_h5, only: h5_file_t, fsym_h5_safe_name, fsym_h5md_header, fsym_make_dir, &
+                       fsym_check_writable
+    use fsym_diagnostics, only: coefficient_tracker_t
     implicit none
     private
 
@@ -14,78 +20,87 @@ module fsym_study_scenes
     integer, parameter :: NPER_POINTS = 400    ! steps per period in the force-point scenes
     integer, parameter :: NSLAB = 1024         ! samples per slab written to HDF5
     integer, parameter :: NPERIODS = 2         ! periods shown by the coefficient scenes
+    integer, parameter :: NLADDER(4) = [1000, 2000, 5000, 10000]  ! results: steps per period
     character(len=*), parameter, public :: SCENES(*) = [character(len=8) :: 'eng3f', &
         'backfr', 'back3f', 'eng4f', 'back4f', 'eng4f2', 'back4f2', 'acoef', 'eng5f', &
         'back5f', 'eng6f', 'back6f', 'scanm2', 'scangfr5', 'results']
         !! every scene, in the order `--all` runs them
+    character(len=*), parameter :: UNIT_SYSTEM = 'Kepler units: G M = 1, m = 1; length L '// &
+        '(the orbit starts at q = (10, 0) L), time T = sqrt(L^3/(G M)); energies per unit '// &
+        'mass in L^2 T-2; coefficients carry T-4 from the division by eps^4'
+        !! the unit system of every file, stated in `h5md/modules/units` and `parameters`
+
+    !> The settings of a study run, passed to every scene.
+    type, public :: study_t
+        character(len=:), allocatable :: outdir  !! directory of the HDF5 files
+        real(wp) :: period = 0.0_wp              !! period P of the paper's orbit
+        real(wp) :: q0(2) = 0.0_wp               !! start position
+        real(wp) :: v0(2) = 0.0_wp               !! start velocity
+        type(kepler_model_t) :: kep              !! the force model (mu = 1)
+    end type study_t
 
     !> Summary of one coefficient run.
     type :: summary_t
         character(len=FSYM_NAME_LEN) :: name = ''
-        logical :: ok = .false.
         logical :: forward = .false.
         integer :: nforce = 0, ngrad = 0
         real(wp) :: emax = 0.0_wp     ! max |energy coefficient| over the first period
         real(wp) :: pend = 0.0_wp     ! precession coefficient at t = P
+        real(wp) :: eend = 0.0_wp     ! energy coefficient at t = P
+        real(wp) :: eend2 = 0.0_wp    ! energy coefficient at t = 2P (runs of 2 periods)
+        real(wp) :: pend2 = 0.0_wp    ! precession coefficient at t = 2P
     end type summary_t
-
-    type(kepler_model_t) :: kep
-    character(len=:), allocatable :: outdir, results_path
-    real(wp) :: period, q0(2), v0(2)
-    integer :: st
-    character(len=512) :: msg
 
 contains
 
-    !> Set the output directory (created if missing) and the report path.
-    subroutine study_init(out, results)
+    !> Settings for a run writing into `out` (created with its parents when missing, by
+    !> `mkdir(2)`, no shell).
+    subroutine study_init(cx, out)
+        type(study_t), intent(out) :: cx         !! the settings
         character(len=*), intent(in) :: out      !! directory for the HDF5 files
-        character(len=*), intent(in) :: results  !! path of the markdown report
-        outdir = trim(out)
-        results_path = trim(results)
-        call kepler_paper_orbit(q0, v0, period)
-        call execute_command_line('mkdir -p "'//outdir//'"', exitstat=st)
-        if (st /= 0) call study_die('cannot create the output directory '//outdir)
-        if (index(results_path, '/', back=.true.) > 1) then
-            call execute_command_line('mkdir -p "'// &
-                results_path(1:index(results_path, '/', back=.true.) - 1)//'"', exitstat=st)
-            if (st /= 0) call study_die('cannot create the directory of '//results_path)
-        end if
+        integer :: st
+        character(len=256) :: msg
+        cx%outdir = trim(out)
+        call kepler_paper_orbit(cx%q0, cx%v0, cx%period)
+        call fsym_make_dir(cx%outdir)
+        call fsym_check_writable(cx%outdir//'/results.h5', st, msg)
+        if (st /= 0) call study_die('cannot write into the output directory '//cx%outdir)
     end subroutine study_init
 
     !> Run one scene by name.
-    subroutine study_scene(name)
-        character(len=*), intent(in) :: name  !! scene name (one of SCENES)
+    subroutine study_scene(cx, name)
+        type(study_t), intent(inout) :: cx       !! the settings
+        character(len=*), intent(in) :: name     !! scene name (one of SCENES)
         call study_say('scene '//trim(name))
-    select case (trim(name))
-    case ('eng3f'); call scene_coefficients('eng3f', [character(len=16) :: 'FR', 'A', &
-                                             'A''', 'RKN'])
-    case ('eng4f'); call scene_coefficients('eng4f', [character(len=16) :: 'M1', &
-                                             'M1(-0.2)', 'M1(-0.1)', 'M1(-1/24)', 'C'])
-    case ('eng4f2'); call scene_coefficients('eng4f2', [character(len=16) :: 'M2(-0.1)', &
-                                              'M2(-0.5)', 'M2(-1)', 'M2(-2)', 'C'])
-    case ('eng5f'); call scene_coefficients('eng5f', [character(len=16) :: 'GFR5(0.3)', &
-                                             'GFR5(0.5)', 'GFR5(1)', 'A5', 'C'])
-    case ('eng6f'); call scene_coefficients('eng6f', [character(len=16) :: 'BM', 'A6', &
-                                             'A6''', 'C'])
-    case ('backfr'); call scene_points('backfr', [character(len=16) :: 'FR'], .true.)
-    case ('back3f'); call scene_points('back3f', [character(len=16) :: 'FR', 'A', 'RKN'], &
-                                       .false.)
-    case ('back4f'); call scene_points('back4f', [character(len=16) :: 'M1', &
-                                       'M1(-1/24)', 'C'], .false.)
-    case ('back4f2'); call scene_points('back4f2', [character(len=16) :: 'M2(-0.1)', &
-                                        'M2(-0.5)', 'C'], .false.)
-    case ('back5f'); call scene_points('back5f', [character(len=16) :: 'GFR5(0.3)', &
-                                       'GFR5(1)', 'A5'], .false.)
-    case ('back6f'); call scene_points('back6f', [character(len=16) :: 'BM', 'A6'], .false.)
-    case ('acoef'); call scene_acoef()
-    case ('scanm2'); call scene_scan_m2()
-    case ('scangfr5'); call scene_scan_gfr5()
-    case ('results'); call scene_results()
-    case default; call study_die('unknown scene '//trim(name))
-    end select
+        select case (trim(name))
+        case ('eng3f'); call scene_coefficients(cx, 'eng3f', [character(len=16) :: 'FR', 'A', &
+                                                 'A''', 'RKN'])
+        case ('eng4f'); call scene_coefficients(cx, 'eng4f', [character(len=16) :: 'M1', &
+                                                 'M1(-0.2)', 'M1(-0.1)', 'M1(-1/24)', 'C'])
+        case ('eng4f2'); call scene_coefficients(cx, 'eng4f2', [character(len=16) :: &
+                                                  'M2(-0.1)', 'M2(-0.5)', 'M2(-1)', 'M2(-2)', 'C'])
+        case ('eng5f'); call scene_coefficients(cx, 'eng5f', [character(len=16) :: &
+                                                 'GFR5(0.3)', 'GFR5(0.5)', 'GFR5(1)', 'A5', 'C'])
+        case ('eng6f'); call scene_coefficients(cx, 'eng6f', [character(len=16) :: 'BM', 'A6', &
+                                                 'A6''', 'C'])
+        case ('backfr'); call scene_points(cx, 'backfr', [character(len=16) :: 'FR'], .true.)
+        case ('back3f'); call scene_points(cx, 'back3f', [character(len=16) :: 'FR', 'A', &
+                                           'RKN'], .false.)
+        case ('back4f'); call scene_points(cx, 'back4f', [character(len=16) :: 'M1', &
+                                           'M1(-1/24)', 'C'], .false.)
+        case ('back4f2'); call scene_points(cx, 'back4f2', [character(len=16) :: 'M2(-0.1)', &
+                                            'M2(-0.5)', 'C'], .false.)
+        case ('back5f'); call scene_points(cx, 'back5f', [character(len=16) :: 'GFR5(0.3)', &
+                                           'GFR5(1)', 'A5'], .false.)
+        case ('back6f'); call scene_points(cx, 'back6f', [character(len=16) :: 'BM', 'A6'], &
+                                           .false.)
+        case ('acoef'); call scene_acoef(cx)
+        case ('scanm2'); call scene_scan_m2(cx)
+        case ('scangfr5'); call scene_scan_gfr5(cx)
+        case ('results'); call scene_results(cx)
+        case default; call study_die('unknown scene '//trim(name))
+        end select
     end subroutine study_scene
-
 
     !> A progress line on standard output.
     subroutine study_say(text)
@@ -110,33 +125,42 @@ contains
 
     ! ---------------------------------------------------------------- steppers
 
-    !> A stepper for a label (any `fsym_scheme_by_name` label or RKN), started at time t0.
-    subroutine new_stepper(label, s, t0)
+    !> A compensated stepper for a label (any `fsym_scheme_by_name` label or RKN) at t0.
+    subroutine new_stepper(cx, label, s, t0)
+        type(study_t), intent(inout) :: cx
         character(len=*), intent(in) :: label
         class(stepper_t), allocatable, intent(inout) :: s
         real(wp), intent(in) :: t0
-        call fsym_new_stepper(trim(label), kep, 2, 1, s, st, msg, t0=t0)
+        integer :: st
+        character(len=256) :: msg
+        call fsym_new_stepper(trim(label), cx%kep, 2, 1, s, st, msg, compensated=.true., t0=t0)
         call need(st, msg)
     end subroutine new_stepper
 
-    !> A stepper for a scheme built from parameters (scans).
-    subroutine stepper_of(sch, s)
+    !> A compensated stepper for a scheme built from parameters (scans).
+    subroutine stepper_of(cx, sch, s)
+        type(study_t), intent(inout) :: cx
         type(scheme_t), intent(in) :: sch
         class(stepper_t), allocatable, intent(inout) :: s
         type(integrator_t) :: it
-        call it%init(sch, kep, 2, 1, st, msg)
+        integer :: st
+        character(len=256) :: msg
+        call it%init(sch, cx%kep, 2, 1, st, msg, compensated=.true.)
         call need(st, msg)
         if (allocated(s)) deallocate (s)
         allocate (s, source=it)
     end subroutine stepper_of
 
-    !> Method attributes on group `g`: name, counts, flags, eps, P, stage arrays, version.
+    !> The run's parameters under `parameters/<safe name>`: label, counts, flags, eps and
+    !> the coefficient table of a splitting method.
     subroutine method_attrs(f, g, s, eps)
         type(h5_file_t), intent(inout) :: f
         character(len=*), intent(in) :: g
         class(stepper_t), intent(in) :: s
         real(wp), intent(in) :: eps
         type(scheme_t) :: sch
+        integer :: st
+        character(len=256) :: msg
         call f%set_attr(g, 'method', trim(s%name()), st, msg); call need(st, msg)
         call f%set_attr(g, 'forward', merge(1, 0, s%is_forward()), st, msg); call need(st, msg)
         call f%set_attr(g, 'symplectic', merge(1, 0, s%is_symplectic()), st, msg)
@@ -151,8 +175,7 @@ contains
         call f%set_attr(g, 'gradient_evaluations', int(s%gradient_evaluations()), st, msg)
         call need(st, msg)
         call f%set_attr(g, 'eps', eps, st, msg); call need(st, msg)
-        call f%set_attr(g, 'period', period, st, msg); call need(st, msg)
-        call f%set_attr(g, 'library_version', FSYM_VERSION, st, msg); call need(st, msg)
+        call f%set_attr(g, 'compensated_summation', 1, st, msg); call need(st, msg)
         select type (s)
         type is (integrator_t)
             sch = s%scheme()
@@ -165,41 +188,51 @@ contains
         end select
     end subroutine method_attrs
 
-    !> File-level H5MD metadata and scene attributes.
-    subroutine file_header(f, scene, eps)
+    !> H5MD metadata (h5md group, units module) and the file's `parameters` group.
+    subroutine file_header(cx, f, scene, eps)
+        type(study_t), intent(inout) :: cx
         type(h5_file_t), intent(inout) :: f
         character(len=*), intent(in) :: scene
         real(wp), intent(in) :: eps
-        call f%make_group('h5md/author', st, msg); call need(st, msg)
-        call f%make_group('h5md/creator', st, msg); call need(st, msg)
-        call f%set_attr('h5md', 'version', [1, 1], st, msg); call need(st, msg)
-        call f%set_attr('h5md/author', 'name', 'forward-symplectic developers', st, msg)
+        integer :: st
+        character(len=256) :: msg
+        call fsym_h5md_header(f, 'fsym-study', FSYM_VERSION, UNIT_SYSTEM, st, msg)
         call need(st, msg)
-        call f%set_attr('h5md/creator', 'name', 'fsym-study', st, msg); call need(st, msg)
-        call f%set_attr('h5md/creator', 'version', FSYM_VERSION, st, msg); call need(st, msg)
-        call f%set_attr('/', 'scene', scene, st, msg); call need(st, msg)
-        call f%set_attr('/', 'eps', eps, st, msg); call need(st, msg)
-        call f%set_attr('/', 'period', period, st, msg); call need(st, msg)
-        call f%set_attr('/', 'q0', q0, st, msg); call need(st, msg)
-        call f%set_attr('/', 'v0', v0, st, msg); call need(st, msg)
-        call f%set_attr('/', 'library_version', FSYM_VERSION, st, msg); call need(st, msg)
+        call f%set_attr('parameters', 'scene', scene, st, msg); call need(st, msg)
+        call f%set_attr('parameters', 'eps', eps, st, msg); call need(st, msg)
+        call f%set_attr('parameters', 'period', cx%period, st, msg); call need(st, msg)
+        call f%set_attr('parameters', 'mu', cx%kep%mu, st, msg); call need(st, msg)
+        call f%set_attr('parameters', 'q0', cx%q0, st, msg); call need(st, msg)
+        call f%set_attr('parameters', 'v0', cx%v0, st, msg); call need(st, msg)
     end subroutine file_header
 
-    !> H5MD box of a particle group (open 2D space).
-    subroutine box(f, g)
+    !> H5MD box of a particle group (open 2D space) and its `label`.
+    subroutine particle_group(f, g, label)
         type(h5_file_t), intent(inout) :: f
-        character(len=*), intent(in) :: g
-        call f%make_group(g//'/box', st, msg); call need(st, msg)
+        character(len=*), intent(in) :: g, label
+        integer :: st
+        character(len=256) :: msg
+        call f%set_attr(g, 'label', trim(label), st, msg); call need(st, msg)
         call f%set_attr(g//'/box', 'dimension', 2, st, msg); call need(st, msg)
-        call f%set_attr(g//'/box', 'boundary', 'none', st, msg); call need(st, msg)
-    end subroutine box
+        call f%set_attr(g//'/box', 'boundary', [character(len=4) :: 'none', 'none'], st, msg)
+        call need(st, msg)
+    end subroutine particle_group
+
+    !> The `unit` attribute of a dataset.
+    subroutine unit(f, path, u)
+        type(h5_file_t), intent(inout) :: f
+        character(len=*), intent(in) :: path, u
+        integer :: st
+        character(len=256) :: msg
+        call f%set_attr(path, 'unit', u, st, msg); call need(st, msg)
+    end subroutine unit
 
     ! ---------------------------------------------------------------- coefficient runs
 
     !> Integrate `nsteps` steps of eps = P/nper from the paper's start state; return the
-    !> summary (max |energy coeff| over the first period, precession coeff at t = P). With
-    !> `f`, also write every step's state and coefficients in slabs under the method's groups.
-    subroutine coefficient_run(s, nper, nsteps, res, f)
+    !> summary. With `f`, also write every step's state and coefficients in slabs.
+    subroutine coefficient_run(cx, s, nper, nsteps, res, f)
+        type(study_t), intent(inout) :: cx
         class(stepper_t), intent(inout) :: s
         integer, intent(in) :: nper, nsteps
         type(summary_t), intent(out) :: res
@@ -208,34 +241,47 @@ contains
         real(wp) :: q(2, 1), v(2, 1), eps
         real(wp) :: bt(NSLAB), bq(2, 1, NSLAB), bv(2, 1, NSLAB), be(NSLAB), bp(NSLAB)
         integer(ik) :: bs(NSLAB)
-        integer :: j, nb
+        integer :: j, nb, st
+        character(len=256) :: msg
         character(len=:), allocatable :: pg, og
-        eps = period / nper
-        q(:, 1) = q0; v(:, 1) = v0
-        call tr%init(q0, v0, eps)
+        eps = cx%period / nper
+        q(:, 1) = cx%q0; v(:, 1) = cx%v0
+        call tr%init(cx%q0, cx%v0, eps)
         res%name = s%name()
         nb = 0
         if (present(f)) then
-            pg = 'particles/'//trim(res%name)
-            og = 'observables/'//trim(res%name)
+            pg = 'particles/'//fsym_h5_safe_name(res%name)
+            og = 'observables/'//fsym_h5_safe_name(res%name)
             call sample(0)
         end if
         do j = 1, nsteps
-            call s%step(kep, q, v, eps, st, msg)
+            call s%step(cx%kep, q, v, eps, st, msg)
             call need(st, trim(res%name)//': '//msg)
             call tr%update(q(:, 1), v(:, 1))
             if (j == nper) then
                 res%emax = tr%energy_max
                 res%pend = tr%precession
+                res%eend = tr%energy
+            end if
+            if (j == 2 * nper) then
+                res%eend2 = tr%energy
+                res%pend2 = tr%precession
             end if
             if (present(f)) call sample(j)
         end do
         if (present(f)) then
             call flush_slab()
-            call box(f, pg)
-            call method_attrs(f, pg, s, eps)
+            call particle_group(f, pg, res%name)
+            call f%set_attr(og, 'label', trim(res%name), st, msg); call need(st, msg)
+            call unit(f, pg//'/position/time', 'T'); call unit(f, pg//'/position/value', 'L')
+            call unit(f, pg//'/velocity/time', 'T')
+            call unit(f, pg//'/velocity/value', 'L T-1')
+            call unit(f, og//'/energy_coefficient/time', 'T')
+            call unit(f, og//'/energy_coefficient/value', 'T-4')
+            call unit(f, og//'/precession_coefficient/time', 'T')
+            call unit(f, og//'/precession_coefficient/value', 'rad T-4')
+            call method_attrs(f, 'parameters/'//fsym_h5_safe_name(res%name), s, eps)
         end if
-        res%ok = .true.
         res%forward = s%is_forward()
         res%nforce = s%forces_per_step()
         res%ngrad = s%gradients_per_step()
@@ -274,45 +320,37 @@ contains
     end subroutine coefficient_run
 
     !> Coefficient scene: each method over NPERIODS periods at eps = P/NPER.
-    subroutine scene_coefficients(scene, labels)
+    subroutine scene_coefficients(cx, scene, labels)
+        type(study_t), intent(inout) :: cx
         character(len=*), intent(in) :: scene
         character(len=*), intent(in) :: labels(:)
         type(h5_file_t) :: f
         class(stepper_t), allocatable :: s
         type(summary_t) :: res
         character(len=160) :: line
-        integer :: m
-        call f%create(outdir//'/'//scene//'.h5', st, msg); call need(st, msg)
-        call file_header(f, scene, period / NPER)
-        call f%set_attr('/', 'methods', join(labels), st, msg); call need(st, msg)
+        integer :: m, st
+        character(len=256) :: msg
+        call f%create(cx%outdir//'/'//scene//'.h5', st, msg); call need(st, msg)
+        call file_header(cx, f, scene, cx%period / NPER)
+        call f%set_attr('parameters', 'methods', labels, st, msg); call need(st, msg)
         do m = 1, size(labels)
-            call new_stepper(labels(m), s, 0.0_wp)
-            call coefficient_run(s, NPER, NPERIODS * NPER, res, f)
-            write (line, '(2x,a12,a,es11.3,a,es11.3)') trim(labels(m)), &
+            call new_stepper(cx, labels(m), s, 0.0_wp)
+            call coefficient_run(cx, s, NPER, NPERIODS * NPER, res, f)
+            write (line, '(2x,a12,a,es14.6,a,es14.6)') trim(labels(m)), &
                 ' max|E coeff| (1 period)', res%emax, '   precession coeff at P', res%pend
             call study_say(trim(line))
         end do
         call f%close(st, msg); call need(st, msg)
-        call study_say('  wrote '//outdir//'/'//scene//'.h5')
+        call study_say('  wrote '//cx%outdir//'/'//scene//'.h5')
     end subroutine scene_coefficients
-
-    pure function join(labels) result(text)
-        character(len=*), intent(in) :: labels(:)
-        character(len=:), allocatable :: text
-        integer :: m
-        text = ''
-        do m = 1, size(labels)
-            if (m > 1) text = text//','
-            text = text//trim(labels(m))
-        end do
-    end function join
 
     ! ---------------------------------------------------------------- force points
 
     !> Force-point scene: each method steps twice at eps = P/400 from the exact state two
     !> steps before the pericentre; force-evaluation points, step-end positions and (for FR
     !> with `substeps`) the positions after each T2 substep; plus the exact orbit nearby.
-    subroutine scene_points(scene, labels, substeps)
+    subroutine scene_points(cx, scene, labels, substeps)
+        type(study_t), intent(inout) :: cx
         character(len=*), intent(in) :: scene
         character(len=*), intent(in) :: labels(:)
         logical, intent(in) :: substeps
@@ -323,98 +361,108 @@ contains
         real(wp) :: eps, t0, q(2, 1), v(2, 1), qs(2, 1, NSTEP + 1), ts(NSTEP + 1)
         real(wp) :: qe(2, 1, NEXACT), te(NEXACT)
         integer(ik) :: steps(NSTEP + 1)
-        integer :: m, j
-        character(len=:), allocatable :: g
+        integer :: m, j, st
+        character(len=256) :: msg
+        character(len=:), allocatable :: g, safe
         character(len=160) :: line
-        eps = period / NPER_POINTS
-        t0 = 0.5_wp * period - NSTEP * eps
-        call f%create(outdir//'/'//scene//'.h5', st, msg); call need(st, msg)
-        call file_header(f, scene, eps)
-        call f%set_attr('/', 'methods', join(labels), st, msg); call need(st, msg)
-        call f%set_attr('/', 't_start', t0, st, msg); call need(st, msg)
+        eps = cx%period / NPER_POINTS
+        t0 = 0.5_wp * cx%period - NSTEP * eps
+        call f%create(cx%outdir//'/'//scene//'.h5', st, msg); call need(st, msg)
+        call file_header(cx, f, scene, eps)
+        call f%set_attr('parameters', 'methods', labels, st, msg); call need(st, msg)
+        call f%set_attr('parameters', 't_start', t0, st, msg); call need(st, msg)
         ! the exact orbit from 3 steps before to 3 steps after the pericentre
         do j = 1, NEXACT
-            te(j) = 0.5_wp * period + 3.0_wp * eps * (2.0_wp * (j - 1) / (NEXACT - 1) - 1.0_wp)
-            call kepler_exact(q0, v0, te(j), qe(:, 1, j), v(:, 1), st)
+            te(j) = 0.5_wp * cx%period + 3.0_wp * eps * (2.0_wp * (j - 1) / (NEXACT - 1) - 1.0_wp)
+            call kepler_exact(cx%q0, cx%v0, te(j), qe(:, 1, j), v(:, 1), st)
             call need(st, 'kepler_exact failed')
         end do
         call f%write('exact/position/time', te, st, msg); call need(st, msg)
         call f%write('exact/position/value', qe, st, msg); call need(st, msg)
+        call unit(f, 'exact/position/time', 'T'); call unit(f, 'exact/position/value', 'L')
         call tr%init(2, 1, 256, st, msg); call need(st, msg)
         do m = 1, size(labels)
-            call kepler_exact(q0, v0, t0, q(:, 1), v(:, 1), st)
+            call kepler_exact(cx%q0, cx%v0, t0, q(:, 1), v(:, 1), st)
             call need(st, 'kepler_exact failed')
-            call new_stepper(labels(m), s, t0)
+            call new_stepper(cx, labels(m), s, t0)
             call tr%clear()
             qs(:, :, 1) = q; ts(1) = t0; steps(1) = 0
             do j = 1, NSTEP
-                call s%step(kep, q, v, eps, st, msg, recorder=tr)
+                call s%step(cx%kep, q, v, eps, st, msg, recorder=tr)
                 call need(st, msg)
                 qs(:, :, j + 1) = q; ts(j + 1) = t0 + j * eps; steps(j + 1) = j
             end do
-            g = 'particles/'//trim(s%name())
+            safe = fsym_h5_safe_name(s%name())
+            g = 'particles/'//safe
             call f%write(g//'/position/step', steps, st, msg); call need(st, msg)
             call f%write(g//'/position/time', ts, st, msg); call need(st, msg)
             call f%write(g//'/position/value', qs, st, msg); call need(st, msg)
-            call box(f, g)
-            call method_attrs(f, g, s, eps)
-            g = 'force_evaluations/'//trim(s%name())
+            call unit(f, g//'/position/time', 'T'); call unit(f, g//'/position/value', 'L')
+            call particle_group(f, g, s%name())
+            call method_attrs(f, 'parameters/'//safe, s, eps)
+            g = 'force_evaluations/'//safe
             call f%write(g//'/step', tr%step(1:tr%count), st, msg); call need(st, msg)
             call f%write(g//'/stage', tr%stage(1:tr%count), st, msg); call need(st, msg)
             call f%write(g//'/kind', tr%kind(1:tr%count), st, msg); call need(st, msg)
             call f%write(g//'/position', tr%q(:, :, 1:tr%count), st, msg); call need(st, msg)
+            call unit(f, g//'/position', 'L')
+            call f%set_attr(g, 'label', trim(s%name()), st, msg); call need(st, msg)
             call f%set_attr(g, 'kind_codes', 'EVAL_FORCE=1 EVAL_GRADIENT=2 '// &
                             'EVAL_EXTRAPOLATED=3', st, msg)
             call need(st, msg)
             call f%set_attr(g, 'dropped', int(tr%dropped), st, msg); call need(st, msg)
-            call method_attrs(f, g, s, eps)
             write (line, '(2x,a12,i4,a)') trim(labels(m)), tr%count, ' force points recorded'
             call study_say(trim(line))
-            if (substeps .and. trim(labels(m)) == 'FR') call fr_substeps(f, t0, eps, NSTEP)
+            if (substeps .and. trim(labels(m)) == 'FR') call fr_substeps(cx, f, t0, eps, NSTEP)
         end do
         call f%close(st, msg); call need(st, msg)
-        call study_say('  wrote '//outdir//'/'//scene//'.h5')
+        call study_say('  wrote '//cx%outdir//'/'//scene//'.h5')
     end subroutine scene_points
 
     !> FR as three T2 substeps of a1 eps, a0 eps, a1 eps: the positions after each substep
     !> (points 1, 1a, 1b, 2, 2a, 2b, 3 of the paper's figure).
-    subroutine fr_substeps(f, t0, eps, nstep)
+    subroutine fr_substeps(cx, f, t0, eps, nstep)
+        type(study_t), intent(inout) :: cx
         type(h5_file_t), intent(inout) :: f
         real(wp), intent(in) :: t0, eps
         integer, intent(in) :: nstep
         class(stepper_t), allocatable :: s
         real(wp) :: a(3), a0, a1, a2, q(2, 1), v(2, 1), qs(2, 1, 3 * nstep + 1)
-        integer :: j, i
+        integer :: j, i, st
+        character(len=256) :: msg
         call fsym_gfr5_coefficients(0.0_wp, a0, a1, a2, st, msg); call need(st, msg)
         a = [a1, a0, a1]
-        call kepler_exact(q0, v0, t0, q(:, 1), v(:, 1), st)
+        call kepler_exact(cx%q0, cx%v0, t0, q(:, 1), v(:, 1), st)
         call need(st, 'kepler_exact failed')
-        call new_stepper('T2', s, t0)
+        call new_stepper(cx, 'T2', s, t0)
         qs(:, :, 1) = q
         do j = 1, nstep
             do i = 1, 3
-                call s%step(kep, q, v, a(i) * eps, st, msg); call need(st, msg)
+                call s%step(cx%kep, q, v, a(i) * eps, st, msg); call need(st, msg)
                 qs(:, :, 3 * (j - 1) + i + 1) = q
             end do
         end do
         call f%write('substeps/FR/position/value', qs, st, msg); call need(st, msg)
+        call unit(f, 'substeps/FR/position/value', 'L')
         call f%set_attr('substeps/FR', 'fractions', a, st, msg); call need(st, msg)
     end subroutine fr_substeps
 
     ! ---------------------------------------------------------------- GFR5 coefficients
 
-    subroutine scene_acoef()
+    subroutine scene_acoef(cx)
+        type(study_t), intent(inout) :: cx
         integer, parameter :: NA = 201
         type(h5_file_t) :: f
         real(wp) :: al(NA), c(3, NA)
-        integer :: j
+        integer :: j, st
+        character(len=256) :: msg
+        call f%create(cx%outdir//'/acoef.h5', st, msg); call need(st, msg)
         do j = 1, NA
             al(j) = 2.0_wp * (j - 1) / (NA - 1)
             call fsym_gfr5_coefficients(al(j), c(1, j), c(2, j), c(3, j), st, msg)
             call need(st, msg)
         end do
-        call f%create(outdir//'/acoef.h5', st, msg); call need(st, msg)
-        call file_header(f, 'acoef', 0.0_wp)
+        call file_header(cx, f, 'acoef', 0.0_wp)
         call f%write('gfr5/alpha', al, st, msg); call need(st, msg)
         call f%write('gfr5/a0', c(1, :), st, msg); call need(st, msg)
         call f%write('gfr5/a1', c(2, :), st, msg); call need(st, msg)
@@ -423,24 +471,28 @@ contains
         call f%set_attr('gfr5', 'alpha_least_negative_a0', al(j), st, msg); call need(st, msg)
         call f%close(st, msg); call need(st, msg)
         call study_say('  a0 least negative at alpha = '//num(al(j)))
-        call study_say('  wrote '//outdir//'/acoef.h5')
+        call study_say('  wrote '//cx%outdir//'/acoef.h5')
     end subroutine scene_acoef
 
     ! ---------------------------------------------------------------- scans
 
-    !> Precession coefficient at t = P and max |energy coefficient| of M2(t1).
-    subroutine m2_at(t1, res)
+    !> Summary of M2(t1) at eps = P/NPER over one period.
+    subroutine m2_at(cx, t1, res)
+        type(study_t), intent(inout) :: cx
         real(wp), intent(in) :: t1
         type(summary_t), intent(out) :: res
         type(scheme_t) :: sch
         class(stepper_t), allocatable :: s
+        integer :: st
+        character(len=256) :: msg
         call fsym_scheme_m2(t1, sch, st, msg); call need(st, msg)
-        call stepper_of(sch, s)
-        call coefficient_run(s, NPER, NPER, res)
+        call stepper_of(cx, sch, s)
+        call coefficient_run(cx, s, NPER, NPER, res)
     end subroutine m2_at
 
     !> The M2 scan over t1 and the bisected zero of the precession at t = P.
-    subroutine m2_scan(t1, e, p, t1zero, found)
+    subroutine m2_scan(cx, t1, e, p, t1zero, found)
+        type(study_t), intent(inout) :: cx
         real(wp), allocatable, intent(out) :: t1(:), e(:), p(:)
         real(wp), intent(out) :: t1zero
         logical, intent(out) :: found
@@ -450,22 +502,22 @@ contains
         t1 = [(-2.5_wp + 0.1_wp * (j - 1), j=1, 25)]
         allocate (e(size(t1)), p(size(t1)))
         do j = 1, size(t1)
-            call m2_at(t1(j), r)
+            call m2_at(cx, t1(j), r)
             e(j) = r%emax; p(j) = r%pend
         end do
         found = .false.; t1zero = 0.0_wp
         do j = 1, size(t1) - 1
             if (sign(1.0_wp, p(j)) /= sign(1.0_wp, p(j + 1))) then
                 lo = t1(j); hi = t1(j + 1); plo = p(j)
-                do it = 1, 40
+                do it = 1, 60
                     mid = 0.5_wp * (lo + hi)
-                    call m2_at(mid, r)
+                    call m2_at(cx, mid, r)
                     if (sign(1.0_wp, r%pend) == sign(1.0_wp, plo)) then
                         lo = mid; plo = r%pend
                     else
                         hi = mid
                     end if
-                    if (hi - lo < 1.0e-6_wp) exit
+                    if (hi - lo < 1.0e-9_wp) exit
                 end do
                 t1zero = 0.5_wp * (lo + hi); found = .true.
                 exit
@@ -473,17 +525,21 @@ contains
         end do
     end subroutine m2_scan
 
-    subroutine scene_scan_m2()
+    subroutine scene_scan_m2(cx)
+        type(study_t), intent(inout) :: cx
         type(h5_file_t) :: f
         real(wp), allocatable :: t1(:), e(:), p(:)
         real(wp) :: t1zero
         logical :: found
-        call m2_scan(t1, e, p, t1zero, found)
-        call f%create(outdir//'/scanm2.h5', st, msg); call need(st, msg)
-        call file_header(f, 'scanm2', period / NPER)
+        integer :: st
+        character(len=256) :: msg
+        call f%create(cx%outdir//'/scanm2.h5', st, msg); call need(st, msg)
+        call m2_scan(cx, t1, e, p, t1zero, found)
+        call file_header(cx, f, 'scanm2', cx%period / NPER)
         call f%write('scan/t1', t1, st, msg); call need(st, msg)
         call f%write('scan/energy_max', e, st, msg); call need(st, msg)
         call f%write('scan/precession_at_P', p, st, msg); call need(st, msg)
+        call unit(f, 'scan/energy_max', 'T-4'); call unit(f, 'scan/precession_at_P', 'rad T-4')
         call f%set_attr('scan', 'zero_found', merge(1, 0, found), st, msg); call need(st, msg)
         call f%set_attr('scan', 't1_zero', t1zero, st, msg); call need(st, msg)
         call f%close(st, msg); call need(st, msg)
@@ -492,236 +548,123 @@ contains
         else
             call study_say('  precession at t = P does not cross zero on the grid')
         end if
-        call study_say('  wrote '//outdir//'/scanm2.h5')
+        call study_say('  wrote '//cx%outdir//'/scanm2.h5')
     end subroutine scene_scan_m2
 
-    !> The GFR5 scan over alpha: max |energy coefficient| and |precession at P|.
-    subroutine gfr5_scan(al, e, p)
+    !> The GFR5 scan over alpha: max |energy coefficient| and precession at P.
+    subroutine gfr5_scan(cx, al, e, p)
+        type(study_t), intent(inout) :: cx
         real(wp), allocatable, intent(out) :: al(:), e(:), p(:)
         type(scheme_t) :: sch
         class(stepper_t), allocatable :: s
         type(summary_t) :: r
-        integer :: j
+        integer :: j, st
+        character(len=256) :: msg
         al = [(0.025_wp * j, j=0, 80)]
         allocate (e(size(al)), p(size(al)))
         do j = 1, size(al)
             call fsym_scheme_gfr5(al(j), sch, st, msg); call need(st, msg)
-            call stepper_of(sch, s)
-            call coefficient_run(s, NPER, NPER, r)
+            call stepper_of(cx, sch, s)
+            call coefficient_run(cx, s, NPER, NPER, r)
             e(j) = r%emax; p(j) = r%pend
         end do
     end subroutine gfr5_scan
 
-    subroutine scene_scan_gfr5()
+    subroutine scene_scan_gfr5(cx)
+        type(study_t), intent(inout) :: cx
         type(h5_file_t) :: f
         real(wp), allocatable :: al(:), e(:), p(:)
-        call gfr5_scan(al, e, p)
-        call f%create(outdir//'/scangfr5.h5', st, msg); call need(st, msg)
-        call file_header(f, 'scangfr5', period / NPER)
+        integer :: st
+        character(len=256) :: msg
+        call f%create(cx%outdir//'/scangfr5.h5', st, msg); call need(st, msg)
+        call gfr5_scan(cx, al, e, p)
+        call file_header(cx, f, 'scangfr5', cx%period / NPER)
         call f%write('scan/alpha', al, st, msg); call need(st, msg)
         call f%write('scan/energy_max', e, st, msg); call need(st, msg)
         call f%write('scan/precession_at_P', p, st, msg); call need(st, msg)
+        call unit(f, 'scan/energy_max', 'T-4'); call unit(f, 'scan/precession_at_P', 'rad T-4')
         call f%set_attr('scan', 'alpha_least_energy', al(minloc(e, 1)), st, msg)
         call need(st, msg)
         call f%set_attr('scan', 'alpha_least_precession', al(minloc(abs(p), 1)), st, msg)
         call need(st, msg)
         call f%close(st, msg); call need(st, msg)
         call study_say('  least energy error at alpha = '//num(al(minloc(e, 1)))// &
-                 ', least |precession| at alpha = '//num(al(minloc(abs(p), 1))))
-        call study_say('  wrote '//outdir//'/scangfr5.h5')
+                       ', least |precession| at alpha = '//num(al(minloc(abs(p), 1))))
+        call study_say('  wrote '//cx%outdir//'/scangfr5.h5')
     end subroutine scene_scan_gfr5
 
-    ! ---------------------------------------------------------------- results report
+    ! ---------------------------------------------------------------- results
 
+    !> A number with 7 significant digits.
     pure function num(x) result(s)
         real(wp), intent(in) :: x
         character(len=:), allocatable :: s
         character(len=32) :: buf
-        if (abs(x) >= 1.0e-2_wp .and. abs(x) < 1.0e4_wp) then
-            write (buf, '(f0.4)') x
-            if (buf(1:1) == '.') buf = '0'//trim(buf)
-            if (buf(1:2) == '-.') buf = '-0'//buf(2:)
-        else
-            write (buf, '(es10.3)') x
-        end if
+        write (buf, '(es14.6)') x
         s = trim(adjustl(buf))
     end function num
 
-    !> Summary of a method at eps = P/5000 and P/10000 (one period).
-    subroutine summarize(label, r1, r2)
-        character(len=*), intent(in) :: label
-        type(summary_t), intent(out) :: r1, r2
-        class(stepper_t), allocatable :: s
-        call new_stepper(label, s, 0.0_wp)
-        call coefficient_run(s, NPER, NPER, r1)
-        call new_stepper(label, s, 0.0_wp)
-        call coefficient_run(s, 2 * NPER, 2 * NPER, r2)
-    end subroutine summarize
-
-    subroutine scene_results()
+    !> The numbers behind doc/results.md: every catalogue method and A7, A8, A7', A8',
+    !> GFR5(0) and M2(t1*) (t1* the zero of M2's precession at t = P), each over two periods
+    !> at eps = P/1000, P/2000, P/5000, P/10000: max |energy coefficient| over the first
+    !> period, energy and precession coefficients at t = P and t = 2P.
+    subroutine scene_results(cx)
+        type(study_t), intent(inout) :: cx
         character(len=FSYM_NAME_LEN), allocatable :: names(:)
-        type(summary_t), allocatable :: r1(:), r2(:)
-        real(wp), allocatable :: t1(:), em(:), pm(:), al(:), eg(:), pg(:)
-        real(wp) :: t1zero, ratio
+        character(len=FSYM_NAME_LEN) :: label
+        real(wp), allocatable :: t1(:), em(:), pm(:)
+        real(wp) :: t1zero
+        real(wp) :: d(size(NLADDER), 5)
         logical :: found
-        integer :: u, m, ios
-        character(len=:), allocatable :: path
-        names = fsym_method_names()
-        allocate (r1(size(names)), r2(size(names)))
+        type(h5_file_t) :: f
+        type(summary_t) :: r
+        class(stepper_t), allocatable :: s
+        type(scheme_t) :: sch
+        integer :: m, k, st
+        character(len=256) :: msg
+        character(len=:), allocatable :: g
+        call f%create(cx%outdir//'/results.h5', st, msg); call need(st, msg)
+        call file_header(cx, f, 'results', cx%period / NPER)
+        call m2_scan(cx, t1, em, pm, t1zero, found)
+        if (.not. found) call study_die('results: no zero of the M2 precession on the grid')
+        names = [fsym_method_names(), [character(len=FSYM_NAME_LEN) :: 'A7', 'A8', 'A7''', &
+                 'A8''', 'GFR5(0)', 'M2(t1*)']]
+        call f%set_attr('parameters', 'methods', names, st, msg); call need(st, msg)
+        call f%set_attr('parameters', 'steps_per_period', NLADDER, st, msg); call need(st, msg)
+        call f%set_attr('parameters', 'm2_t1_zero', t1zero, st, msg); call need(st, msg)
         do m = 1, size(names)
-            call summarize(names(m), r1(m), r2(m))
-        end do
-        call study_say('  per-method table done ('//fsym_int_text(size(names))//' methods)')
-        call m2_scan(t1, em, pm, t1zero, found)
-        call gfr5_scan(al, eg, pg)
-        path = results_path
-        open (newunit=u, file=path//'.part', status='replace', action='write', iostat=ios)
-        call need(ios, 'cannot write '//path//'.part')
-        write (u, '(a)') '# Results: the paper''s study, measured', '', &
-            'Generated by `bash scripts/main.sh` (program `fsym-study`, scene `results`; '// &
-            '`fpm run --profile release fsym-study -- --scene results`). Do not edit by hand.', &
-            '', 'Orbit: q = (10, 0), p = (0, 0.1) (e = 0.9), period P = '//num(period)// &
-            '. Energy coefficient (E(t) - E0)/(E0 eps^4), maximum of its absolute value over '// &
-            'one period; precession coefficient: signed rotation angle of the LRL vector at '// &
-            't = P divided by eps^4 (counter-clockwise positive). eps is in time units.', '', &
-            '## Per method, eps = P/5000 (convergence: the same at eps = P/10000)', '', &
-            '| method | forward | forces/step | gradients/step | max abs energy coeff | '// &
-            'rel. diff eps/2 | precession coeff at P | rel. diff eps/2 |', &
-            '|---|---|---|---|---|---|---|---|'
-        do m = 1, size(names)
-            write (u, '(a)') '| '//trim(names(m))//' | '//trim(merge('yes', 'no ', &
-                r1(m)%forward))//' | '//fsym_int_text(r1(m)%nforce)//' | '// &
-                fsym_int_text(r1(m)%ngrad)//' | '//num(r1(m)%emax)//' | '// &
-                num(fsym_relative_difference(r1(m)%emax, r2(m)%emax))//' | '// &
-                num(r1(m)%pend)//' | '//num(fsym_relative_difference(r1(m)%pend, r2(m)%pend))//' |'
-        end do
-        write (u, '(a)') '', 'A relative difference above about 0.05 means the '// &
-            'coefficient is not yet a converged fingerprint at this eps (expected for T2, '// &
-            'which is second order, and for the energy of RKN, which drifts).', '', &
-            '', 'Not converged to 5 % at this eps (relative difference eps vs eps/2 '// &
-            'above 0.05): '// &
-            unconverged()//'.', '', &
-            '## The paper''s claims', '', &
-            'Criterion: a claim "~k times" holds when the measured ratio lies within a '// &
-            'factor of 2 of k; "close to" within 25 %; "> k" as stated. Energy heights use the '// &
-            'max abs energy coefficient, precession the abs value of the coefficient at t = P, '// &
-            'all at eps = P/5000.', '', '| claim (paper) | measured | holds |', '|---|---|---|'
-        ratio = em_of('FR') / em_of('A')
-        call claim('FR''s energy spike ~10x that of A', 'ratio '//num(ratio), near(ratio, 10.0_wp))
-        ratio = pp_of('FR') / pp_of('RKN')
-        call claim('FR''s precession ~3x that of RKN', 'ratio '//num(ratio), near(ratio, 3.0_wp))
-        ratio = pp_of('FR') / pp_of('A')
-        call claim('FR''s precession ~10x that of A', 'ratio '//num(ratio), near(ratio, 10.0_wp))
-        ratio = pp_of('FR') / pp_of('A''')
-        call claim('FR''s precession ~10x that of A''', 'ratio '//num(ratio), &
-                   near(ratio, 10.0_wp))
-        ratio = em_of('A''') / em_of('A')
-        call claim('A'' energy error closely matches A', 'ratio '//num(ratio), &
-                   close_to(ratio))
-        ratio = pp_of('A''') / pp_of('A')
-        call claim('A'' precession error smaller than A''s', 'ratio A''/A '//num(ratio), &
-                   ratio < 1.0_wp)
-        ratio = pp_of('C') / pp_of('A5')
-        call claim('A5''s precession > 4x smaller than C''s', 'ratio C/A5 '//num(ratio), &
-                   ratio > 4.0_wp)
-        ratio = pp_of('GFR5(1)') / pp_of('A5')
-        call claim('A5''s precession ~200x smaller than GFR5(alpha=1)''s', &
-                   'ratio GFR5(1)/A5 '//num(ratio), near(ratio, 200.0_wp))
-        ratio = pp_of('BM') / pp_of('A6')
-        call claim('BM''s precession ~100x (two orders of magnitude) that of A6', &
-                   'ratio '//num(ratio), near(ratio, 100.0_wp))
-        ratio = pp_of('BM') / pp_of('C')
-        call claim('BM''s precession ~20x that of C', 'ratio '//num(ratio), near(ratio, 20.0_wp))
-        ratio = em_of('BM') / em_of('A6')
-        call claim('BM''s max energy error height ~4x that of A6', 'ratio '//num(ratio), &
-                   near(ratio, 4.0_wp))
-        ratio = em_of('BM') / em_of('C')
-        call claim('BM''s energy error comparable to C''s', 'ratio '//num(ratio), &
-                   near(ratio, 1.0_wp))
-        ratio = em_of('A6''') / em_of('A6')
-        call claim('A6'' energy error nearly indistinguishable from A6''s', &
-                   'ratio '//num(ratio), close_to(ratio))
-        ratio = pp_of('A6''') / pp_of('A6')
-        call claim('A6'' precession much larger than A6''s', 'ratio '//num(ratio), &
-                   ratio > 2.0_wp)
-        ratio = pp_of('A6''') / pp_of('BM')
-        call claim('A6'' precession still smaller than BM''s', 'ratio A6''/BM '//num(ratio), &
-                   ratio < 1.0_wp)
-        if (found) then
-            call claim('M2: t1 can be tuned so the precession at t = P vanishes '// &
-                       '(METHODS.md: near t1 = -1.15)', 'zero at t1 = '//num(t1zero), &
-                       abs(t1zero + 1.15_wp) < 0.1_wp)
-        else
-            call claim('M2: t1 can be tuned so the precession at t = P vanishes', &
-                       'no sign change for t1 in [-2.5, -0.1]', .false.)
-        end if
-        call claim('GFR5: energy error height lowest at alpha = 0.5', 'least at alpha = '// &
-                   num(al(minloc(eg, 1)))//' (grid 0..2 step 0.025)', &
-                   abs(al(minloc(eg, 1)) - 0.5_wp) <= 0.1_wp)
-        call claim('GFR5: precession error smallest at alpha = 1', 'least at alpha = '// &
-                   num(al(minloc(abs(pg), 1)))//' (grid 0..2 step 0.025)', &
-                   abs(al(minloc(abs(pg), 1)) - 1.0_wp) <= 0.1_wp)
-        close (u)
-        call f_rename(path//'.part', path)
-        call study_say('  wrote '//path)
-    contains
-        function unconverged() result(text)
-            character(len=:), allocatable :: text
-            integer :: j
-            text = ''
-            do j = 1, size(names)
-                if (fsym_relative_difference(r1(j)%emax, r2(j)%emax) > 0.05_wp) then
-                    text = text//' '//trim(names(j))//' (energy)'
+            label = names(m)
+            do k = 1, size(NLADDER)
+                if (trim(label) == 'M2(t1*)') then
+                    call fsym_scheme_m2(t1zero, sch, st, msg); call need(st, msg)
+                    call stepper_of(cx, sch, s)
+                else if (trim(label) == 'GFR5(0)') then
+                    call fsym_scheme_gfr5(0.0_wp, sch, st, msg); call need(st, msg)
+                    call stepper_of(cx, sch, s)
+                else
+                    call new_stepper(cx, label, s, 0.0_wp)
                 end if
-                if (fsym_relative_difference(r1(j)%pend, r2(j)%pend) > 0.05_wp) then
-                    text = text//' '//trim(names(j))//' (precession)'
-                end if
+                call coefficient_run(cx, s, NLADDER(k), 2 * NLADDER(k), r)
+                d(k, :) = [r%emax, r%eend, r%pend, r%eend2, r%pend2]
             end do
-            if (len(text) == 0) text = ' none'
-        end function unconverged
-        real(wp) function em_of(label)
-            character(len=*), intent(in) :: label
-            em_of = r1(index_of(label))%emax
-        end function em_of
-        real(wp) function pp_of(label)
-            character(len=*), intent(in) :: label
-            pp_of = abs(r1(index_of(label))%pend)
-        end function pp_of
-        integer function index_of(label)
-            character(len=*), intent(in) :: label
-            integer :: j
-            index_of = 0
-            do j = 1, size(names)
-                if (trim(names(j)) == label) index_of = j
-            end do
-            if (index_of == 0) call study_die('results: no method '//label)
-        end function index_of
-        subroutine claim(text, measured, holds)
-            character(len=*), intent(in) :: text, measured
-            logical, intent(in) :: holds
-            write (u, '(a)') '| '//text//' | '//measured//' | '// &
-                trim(merge('yes                              ', &
-                           'no: the measurement disagrees    ', holds))//' |'
-            call study_say('  claim: '//text//': '//measured//merge(' holds        ', &
-                                                              ' does NOT hold', holds))
-        end subroutine claim
+            g = 'summary/'//fsym_h5_safe_name(label)
+            call f%write(g//'/steps_per_period', real(NLADDER, wp), st, msg); call need(st, msg)
+            call f%write(g//'/energy_max', d(:, 1), st, msg); call need(st, msg)
+            call f%write(g//'/energy_at_P', d(:, 2), st, msg); call need(st, msg)
+            call f%write(g//'/precession_at_P', d(:, 3), st, msg); call need(st, msg)
+            call f%write(g//'/energy_at_2P', d(:, 4), st, msg); call need(st, msg)
+            call f%write(g//'/precession_at_2P', d(:, 5), st, msg); call need(st, msg)
+            call unit(f, g//'/energy_max', 'T-4'); call unit(f, g//'/energy_at_P', 'T-4')
+            call unit(f, g//'/energy_at_2P', 'T-4')
+            call unit(f, g//'/precession_at_P', 'rad T-4')
+            call unit(f, g//'/precession_at_2P', 'rad T-4')
+            call f%set_attr(g, 'label', trim(label), st, msg); call need(st, msg)
+            call method_attrs(f, g, s, cx%period / NLADDER(size(NLADDER)))
+        end do
+        call f%close(st, msg); call need(st, msg)
+        call study_say('  '//fsym_int_text(size(names))//' methods, M2 precession zero at t1 = '// &
+                       num(t1zero))
+        call study_say('  wrote '//cx%outdir//'/results.h5')
     end subroutine scene_results
-
-    logical function near(ratio, k)
-        real(wp), intent(in) :: ratio, k
-        near = ratio >= 0.5_wp * k .and. ratio <= 2.0_wp * k
-    end function near
-
-    logical function close_to(ratio)
-        real(wp), intent(in) :: ratio
-        close_to = ratio >= 0.8_wp .and. ratio <= 1.25_wp
-    end function close_to
-
-    !> Rename a finished text file into place (its temporary is removed on failure).
-    subroutine f_rename(from, to)
-        character(len=*), intent(in) :: from, to
-        call fsym_rename_file(from, to, st, msg)
-        call need(st, msg)
-    end subroutine f_rename
 
 end module fsym_study_scenes

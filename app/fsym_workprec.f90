@@ -1,160 +1,276 @@
-!> Work-precision study: every method of the library (the catalogue and RKN) on two Kepler
-!> orbits, step sizes P/100 .. P/20000, error against run time and against evaluations, the
-!> time each method needs to reach target errors, ranked. Writes the table of every run
-!> (CSV, read by scripts/plot_workprec.py) and the report `doc/work-precision.md`.
+!> Work-precision study: every method of the library (the catalogue and RKN) on three Kepler
+!> orbits, error against run time and against evaluations. Each method's step sizes extend
+!> (coarser and finer, by the same geometric factor) until every target error of its orbit is
+!> bracketed, so the time to each target is interpolated between two runs, never bounded.
+!> Timings are the minimum over interleaved repetitions (every run of an orbit once, then
+!> again, ...), with the median and maximum kept as the spread. Writes the HDF5 file read by
+!> scripts/report_workprec.py (which renders doc/work-precision.md and the figures) and the
+!> CSV of every run (doc/work-precision.csv). Both outputs are checked writable before the
+!> work and written through temporary names.
 !>
-!> Usage:
-!>   fsym-workprec [md csv h5 hardware compiler flags [nsweep2 [nsweep1 [Nmax]]]]
-!> The hardware, compiler and flags strings are printed into the report as given. The HDF5
-!> file holds, per orbit group (`e0.9`, `e0.6`), 2D datasets (step size x method) of every
-!> measured quantity, the method names and the run's description as attributes.
+!>     fsym-workprec [--h5 FILE] [--csv FILE] [--hardware TEXT] [--flags TEXT]
+!>                   [--nsweep N] [--reps R] [--nmax N]
+!>
+!> Orbits: 1. the paper's e = 0.9 orbit (d = 2, 10 periods); 2. the e = 0.6 orbit of Hairer,
+!> Lubich and Wanner (d = 2, 200 periods); 3. the same e = 0.6 orbit tilted out of the plane
+!> (d = 3, 50 periods).
 program fsym_workprec
-    use, intrinsic :: iso_fortran_env, only: output_unit, int64
+    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use fsym
     use fsym_timing, only: seconds_since, median
-    use fsym_h5, only: h5_file_t
+    use fsym_h5, only: h5_file_t, fsym_check_writable, fsym_open_text, fsym_commit_text, &
+                       fsym_h5_safe_name, fsym_h5md_header
     implicit none
 
-    integer, parameter :: norbit = 2
-    real(wp), parameter :: nmin = 100.0_wp   ! steps per period, coarsest
-    real(wp) :: nmax = 20000.0_wp            ! steps per period, finest
+    integer, parameter :: NORBIT = 3, MAXPT = 80
+    real(wp), parameter :: NMIN = 100.0_wp            ! base grid: steps per period, coarsest
+    real(wp), parameter :: NFLOOR = 4.0_wp            ! never coarser than P/4
+    real(wp), parameter :: NCAP = 4.0e6_wp            ! never finer than P/4e6
+    real(wp), parameter :: TMIN_RUN = 0.004_wp        ! a timed sample lasts at least this (s)
+    integer, parameter :: DIMS(NORBIT) = [2, 2, 3]
+    integer, parameter :: PERIODS(NORBIT) = [10, 200, 50]
+    character(len=*), parameter :: ORBIT_NAME(NORBIT) = [character(len=40) :: &
+        'e = 0.9 (paper), d = 2, 10 periods', 'e = 0.6, d = 2, 200 periods', &
+        'e = 0.6 tilted, d = 3, 50 periods']
+    character(len=*), parameter :: GROUP(NORBIT) = [character(len=8) :: 'e0.9', 'e0.6', &
+                                                    'e0.6_3d']
+    real(wp), parameter :: ETARGET(2) = [1.0e-4_wp, 1.0e-8_wp]   ! max |dE/E| targets
+    real(wp), parameter :: PTARGET = 1.0e-6_wp                   ! |precession| target, orbit 1
+
     character(len=FSYM_NAME_LEN), allocatable :: names(:)
-    character(len=512) :: md_path, csv_path, h5_path, hardware, compiler, flags, arg
-    integer :: nsweep(norbit), nm, io, ie, im, u
-    real(wp), allocatable :: tim(:, :, :), de(:, :, :), prec(:, :, :), phase(:, :, :)
-    real(wp), allocatable :: nfe(:, :, :), nge(:, :, :), steps_per_period(:, :)
+    character(len=512) :: h5_path, csv_path, hardware, flags, arg, msg
+    real(wp) :: nmax = 20000.0_wp, ratio, gcost, t_all
+    integer :: nsweep = 12, nreps = 5, nm, io, im, ie, st, i, rep
+    integer, allocatable :: npt(:, :), ordm(:), inner(:, :, :)
+    real(wp), allocatable :: nper(:, :, :), tmin(:, :, :), tmed(:, :, :), tmax(:, :, :)
+    real(wp), allocatable :: de(:, :, :), prec(:, :, :), phase(:, :, :), nfe(:, :, :)
+    real(wp), allocatable :: nge(:, :, :), samples(:, :, :, :)
     logical, allocatable :: fwd(:)
-    integer, allocatable :: ordm(:)
-    real(wp) :: gcost, t_start
     integer(int64) :: t0
 
-    md_path = 'doc/work-precision.md'
-    csv_path = 'doc/work-precision.csv'
     h5_path = 'out/work-precision.h5'
-    hardware = 'unknown'; compiler = 'unknown'; flags = 'unknown'
-    nsweep = [12, 12]
-    if (command_argument_count() >= 6) then
-        call get_command_argument(1, md_path)
-        call get_command_argument(2, csv_path)
-        call get_command_argument(3, h5_path)
-        call get_command_argument(4, hardware)
-        call get_command_argument(5, compiler)
-        call get_command_argument(6, flags)
-    end if
-    if (command_argument_count() >= 7) then
-        call get_command_argument(7, arg)
-        read (arg, *) nsweep(2)
-    end if
-    if (command_argument_count() >= 8) then
-        call get_command_argument(8, arg)
-        read (arg, *) nsweep(1)
-    end if
-    if (command_argument_count() >= 9) then      ! finest N (a quick smoke test)
-        call get_command_argument(9, arg)
-        read (arg, *) nmax
-    end if
-    nsweep = max(2, nsweep)
+    csv_path = 'doc/work-precision.csv'
+    hardware = 'unknown'; flags = 'unknown'
+    i = 0
+    do while (i < command_argument_count())
+        i = i + 1
+        call get_command_argument(i, arg)
+        select case (trim(arg))
+        case ('--h5'); call next_value(h5_path)
+        case ('--csv'); call next_value(csv_path)
+        case ('--hardware'); call next_value(hardware)
+        case ('--flags'); call next_value(flags)
+        case ('--nsweep'); call next_value(arg); read (arg, *, iostat=st) nsweep; call ok_read()
+        case ('--reps'); call next_value(arg); read (arg, *, iostat=st) nreps; call ok_read()
+        case ('--nmax'); call next_value(arg); read (arg, *, iostat=st) nmax; call ok_read()
+        case default; call die('unknown argument "'//trim(arg)//'"')
+        end select
+    end do
+    nsweep = max(2, nsweep); nreps = max(1, nreps)
+    call fsym_check_writable(trim(h5_path), st, msg)     ! before the work, not after
+    if (st /= FSYM_SUCCESS) call die(msg)
+    call fsym_check_writable(trim(csv_path), st, msg)
+    if (st /= FSYM_SUCCESS) call die(msg)
     call system_clock(t0)
 
     names = fsym_method_names()
     nm = size(names)
-    allocate (tim(maxval(nsweep), nm, norbit))
-    allocate (de, prec, phase, nfe, nge, mold=tim)
-    allocate (steps_per_period(maxval(nsweep), norbit), fwd(nm), ordm(nm))
+    allocate (npt(nm, NORBIT), inner(MAXPT, nm, NORBIT), ordm(nm), fwd(nm))
+    allocate (nper(MAXPT, nm, NORBIT), tmin(MAXPT, nm, NORBIT), samples(nreps, MAXPT, nm, NORBIT))
+    allocate (tmed, tmax, de, prec, phase, nfe, nge, mold=nper)
+    tmin = ieee_nan(); tmed = tmin; tmax = tmin; de = tmin; prec = tmin; phase = tmin
+    nfe = 0.0_wp; nge = 0.0_wp; inner = 1; samples = ieee_nan()
     call method_orders()
-    tim = -1.0_wp; de = ieee_nan(); prec = ieee_nan(); phase = ieee_nan()
-    nfe = 0.0_wp; nge = 0.0_wp
     gcost = gradient_cost()
     write (output_unit, '(a,f0.3)') 'gradient cost / force cost = ', gcost
+    ratio = (nmax / NMIN)**(1.0_wp / real(nsweep - 1, wp))
 
-    do io = 1, norbit
-        do ie = 1, nsweep(io)
-            steps_per_period(ie, io) = nmin * (nmax / nmin)**(real(ie - 1, wp) / &
-                                                               real(nsweep(io) - 1, wp))
-        end do
+    ! 1. the grids and the untimed diagnostics of every run
+    do io = 1, NORBIT
         do im = 1, nm
-            do ie = 1, nsweep(io)
-                call one_run(io, trim(names(im)), steps_per_period(ie, io), fwd(im), &
-                             tim(ie, im, io), nfe(ie, im, io), nge(ie, im, io), de(ie, im, io), &
-                             prec(ie, im, io), phase(ie, im, io))
-            end do
-            write (output_unit, '(a,i0,a,a,a,f0.1,a)') 'orbit ', io, ' ', trim(names(im)), &
-                ' done (', seconds_since(t0), ' s)'
-            flush (output_unit)
+            call sweep(io, im)
         end do
+        write (output_unit, '(a,f0.1,a)') 'orbit '//trim(ORBIT_NAME(io))//': grids done (', &
+            seconds_since(t0), ' s)'
+        flush (output_unit)
     end do
-    t_start = seconds_since(t0)
-
-    open (newunit=u, file=trim(csv_path), status='replace', action='write')
-    write (u, '(a)') 'orbit,method,forward,steps_per_period,time_s,force_evals,grad_evals,'// &
-        'max_rel_energy_error,precession_rad,phase_error'
-    do io = 1, norbit
-        do im = 1, nm
-            do ie = 1, nsweep(io)
-                write (u, '(i0,a,a,a,l1,a,es12.5,a,es12.5,a,es12.5,a,es12.5,a,es12.5,a,'// &
-                       'es12.5,a,es12.5)') io, ',', trim(names(im)), ',', fwd(im), ',', &
-                    steps_per_period(ie, io), ',', tim(ie, im, io), ',', nfe(ie, im, io), ',', &
-                    nge(ie, im, io), ',', de(ie, im, io), ',', prec(ie, im, io), ',', &
-                    phase(ie, im, io)
+    ! 2. timings: every run of an orbit once per round, nreps rounds
+    do io = 1, NORBIT
+        do rep = 1, nreps
+            do im = 1, nm
+                do ie = 1, npt(im, io)
+                    samples(rep, ie, im, io) = timed_run(io, im, ie)
+                end do
             end do
         end do
+        do im = 1, nm
+            do ie = 1, npt(im, io)
+                tmin(ie, im, io) = minval(samples(:, ie, im, io))
+                tmed(ie, im, io) = median(samples(:, ie, im, io))
+                tmax(ie, im, io) = maxval(samples(:, ie, im, io))
+            end do
+        end do
+        write (output_unit, '(a,f0.1,a)') 'orbit '//trim(ORBIT_NAME(io))//': timings done (', &
+            seconds_since(t0), ' s)'
+        flush (output_unit)
     end do
-    close (u)
-    call write_report()
+    t_all = seconds_since(t0)
+    call write_csv()
     call write_h5()
-    write (output_unit, '(a)') 'wrote '//trim(md_path)//', '//trim(csv_path)//' and '// &
-        trim(h5_path)
+    write (output_unit, '(a)') 'wrote '//trim(h5_path)//' and '//trim(csv_path)
 
 contains
 
+    subroutine die(text)
+        character(len=*), intent(in) :: text
+        write (error_unit, '(a)') 'fsym-workprec: '//trim(text)
+        error stop 1
+    end subroutine die
+
+    subroutine next_value(out)
+        character(len=*), intent(out) :: out
+        if (i >= command_argument_count()) call die(trim(arg)//' needs a value')
+        i = i + 1
+        call get_command_argument(i, out)
+    end subroutine next_value
+
+    subroutine ok_read()
+        if (st /= 0) call die('not a number after '//trim(arg))
+    end subroutine ok_read
+
     real(wp) function ieee_nan()
-        use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
         ieee_nan = ieee_value(1.0_wp, ieee_quiet_nan)
     end function ieee_nan
 
-    !> Initial state, period and number of periods of orbit `io`.
-    subroutine orbit(io, q, v, period, nper)
+    !> Initial state (first `DIMS(io)` entries used), period of orbit io.
+    subroutine orbit(io, q, v, period)
         integer, intent(in) :: io
-        real(wp), intent(out) :: q(2), v(2), period
-        integer, intent(out) :: nper
-        if (io == 1) then
-            call kepler_paper_orbit(q, v, period)
-            nper = 10
-        else
-            call kepler_elliptic_orbit(0.6_wp, q, v, period)
-            nper = 200
-        end if
+        real(wp), intent(out) :: q(3), v(3), period
+        real(wp) :: q2(2), v2(2)
+        q = 0.0_wp; v = 0.0_wp
+        select case (io)
+        case (1)
+            call kepler_paper_orbit(q2, v2, period)
+            q(1:2) = q2; v(1:2) = v2
+        case (2)
+            call kepler_elliptic_orbit(0.6_wp, q2, v2, period)
+            q(1:2) = q2; v(1:2) = v2
+        case default
+            ! the e = 0.6 orbit rotated by 30 degrees about x, then 20 degrees about z
+            call kepler_elliptic_orbit(0.6_wp, q2, v2, period)
+            q = tilt([q2(1), q2(2), 0.0_wp]); v = tilt([v2(1), v2(2), 0.0_wp])
+        end select
     end subroutine orbit
 
-    !> One method at one step size on orbit io: a diagnostic run (energy after every step,
-    !> LRL angle and the exact solution at the end), then timed runs with nothing but the
-    !> integration in the loop (median of 3 to 7 repeats).
-    subroutine one_run(io, name, nper_period, forward, time, nf, ng, dmax, precession, perr)
+    !> Rotation by 30 degrees about x, then 20 degrees about z.
+    pure function tilt(x) result(y)
+        real(wp), intent(in) :: x(3)
+        real(wp) :: y(3), z(3), c1, s1, c2, s2
+        c1 = cos(FSYM_PI / 6.0_wp); s1 = sin(FSYM_PI / 6.0_wp)
+        c2 = cos(FSYM_PI / 9.0_wp); s2 = sin(FSYM_PI / 9.0_wp)
+        z = [x(1), c1 * x(2) - s1 * x(3), s1 * x(2) + c1 * x(3)]
+        y = [c2 * z(1) - s2 * z(2), s2 * z(1) + c2 * z(2), z(3)]
+    end function tilt
+
+    !> True when the run's errors are above every target of orbit io (the coarse end of a
+    !> bracket) or, with `below`, at or below every target (the fine end).
+    logical function beyond(io, e, p, below)
         integer, intent(in) :: io
-        character(len=*), intent(in) :: name
-        real(wp), intent(in) :: nper_period
-        logical, intent(out) :: forward
-        real(wp), intent(out) :: time, nf, ng, dmax, precession, perr
+        real(wp), intent(in) :: e, p
+        logical, intent(in) :: below
+        if (below) then
+            beyond = e <= minval(ETARGET)
+            if (io == 1) beyond = beyond .and. abs(p) <= PTARGET
+        else
+            beyond = .not. (e <= maxval(ETARGET))           ! NaN counts as above
+            if (io == 1) beyond = beyond .and. .not. (abs(p) <= PTARGET)
+        end if
+    end function beyond
+
+    !> The grid of method im on orbit io: the base grid NMIN .. nmax, extended by the same
+    !> factor at either end until the targets are bracketed (within NFLOOR .. NCAP).
+    subroutine sweep(io, im)
+        integer, intent(in) :: io, im
+        real(wp) :: n(MAXPT), e, p, ph, f, g
+        integer :: k, nlo, nhi
+        ! base grid in the middle of the index range, extensions on either side
+        nlo = MAXPT / 2 - nsweep / 2
+        do k = 1, nsweep
+            n(nlo + k - 1) = NMIN * ratio**(k - 1)
+        end do
+        nhi = nlo + nsweep - 1
+        do k = nlo, nhi
+            call diagnose(io, im, n(k), e, p, ph, f, g)
+            call keep(io, im, k, n(k), e, p, ph, f, g)
+        end do
+        do while (.not. beyond(io, de(nlo, im, io), prec(nlo, im, io), .false.) &
+                  .and. n(nlo) / ratio >= NFLOOR .and. nlo > 1)
+            nlo = nlo - 1
+            n(nlo) = n(nlo + 1) / ratio
+            call diagnose(io, im, n(nlo), e, p, ph, f, g)
+            call keep(io, im, nlo, n(nlo), e, p, ph, f, g)
+        end do
+        do while (.not. beyond(io, de(nhi, im, io), prec(nhi, im, io), .true.) &
+                  .and. n(nhi) * ratio <= NCAP .and. nhi < MAXPT)
+            nhi = nhi + 1
+            n(nhi) = n(nhi - 1) * ratio
+            call diagnose(io, im, n(nhi), e, p, ph, f, g)
+            call keep(io, im, nhi, n(nhi), e, p, ph, f, g)
+        end do
+        ! pack to 1 .. npt
+        npt(im, io) = nhi - nlo + 1
+        nper(1:npt(im, io), im, io) = nper(nlo:nhi, im, io)
+        de(1:npt(im, io), im, io) = de(nlo:nhi, im, io)
+        prec(1:npt(im, io), im, io) = prec(nlo:nhi, im, io)
+        phase(1:npt(im, io), im, io) = phase(nlo:nhi, im, io)
+        nfe(1:npt(im, io), im, io) = nfe(nlo:nhi, im, io)
+        nge(1:npt(im, io), im, io) = nge(nlo:nhi, im, io)
+    end subroutine sweep
+
+    !> Store the diagnostics of point j.
+    subroutine keep(io, im, j, n, e, p, ph, f, g)
+        integer, intent(in) :: io, im, j
+        real(wp), intent(in) :: n, e, p, ph, f, g
+        nper(j, im, io) = n
+        de(j, im, io) = e; prec(j, im, io) = p; phase(j, im, io) = ph
+        nfe(j, im, io) = f; nge(j, im, io) = g
+    end subroutine keep
+
+    !> Steps of a run at n steps per period on orbit io, and the step size.
+    subroutine run_size(io, n, nsteps, h)
+        integer, intent(in) :: io
+        real(wp), intent(in) :: n
+        integer(ik), intent(out) :: nsteps
+        real(wp), intent(out) :: h
+        real(wp) :: q(3), v(3), period
+        call orbit(io, q, v, period)
+        nsteps = max(1_ik, nint(n * PERIODS(io), ik))
+        h = period * PERIODS(io) / real(nsteps, wp)
+    end subroutine run_size
+
+    !> The untimed diagnostic run: max relative energy error over every step, LRL rotation
+    !> at the end (signed in the orbit's plane), phase-space error against kepler_exact.
+    subroutine diagnose(io, im, n, dmax, precession, perr, nf, ng)
+        integer, intent(in) :: io, im
+        real(wp), intent(in) :: n
+        real(wp), intent(out) :: dmax, precession, perr, nf, ng
         type(kepler_model_t) :: model
         class(stepper_t), allocatable :: s
-        real(wp) :: q0(2), v0(2), period, h, q(2, 1), v(2, 1), e0, qx(2), vx(2), ang0, reps(7)
-        integer :: nper, st, r, nrep
+        real(wp) :: q0(3), v0(3), period, h, e0, a0(3), a1(3), ax(3), lz(3)
+        real(wp), allocatable :: q(:, :), v(:, :), qx(:), vx(:)
+        integer :: d, st
         integer(ik) :: k, nsteps
-        integer(int64) :: t1
         character(len=256) :: msg
-
-        call orbit(io, q0, v0, period, nper)
-        nsteps = nint(nper_period * nper, ik)
-        h = period * nper / real(nsteps, wp)
-        call fsym_new_stepper(name, model, 2, 1, s, st, msg)
-        if (st /= FSYM_SUCCESS) then
-            write (output_unit, '(a)') 'fsym-workprec: '//trim(msg)
-            error stop 1
-        end if
-        forward = s%is_forward()
-        q(:, 1) = q0; v(:, 1) = v0
-        e0 = kepler_energy(q0, v0)
-        ang0 = kepler_lrl_angle(q0, v0)
+        d = DIMS(io)
+        call orbit(io, q0, v0, period)
+        call run_size(io, n, nsteps, h)
+        allocate (q(d, 1), v(d, 1), qx(d), vx(d))
+        call fsym_new_stepper(trim(names(im)), model, d, 1, s, st, msg)
+        if (st /= FSYM_SUCCESS) call die(msg)
+        fwd(im) = s%is_forward()
+        q(:, 1) = q0(1:d); v(:, 1) = v0(1:d)
+        e0 = kepler_energy(q0(1:d), v0(1:d))
         dmax = 0.0_wp
         do k = 1, nsteps
             call s%step(model, q, v, h, st)
@@ -163,31 +279,60 @@ contains
         end do
         nf = real(s%force_evaluations(), wp)
         ng = real(s%gradient_evaluations(), wp)
-        time = ieee_nan()
-        if (st /= FSYM_SUCCESS) then
+        if (st /= FSYM_SUCCESS .or. .not. (dmax <= huge(1.0_wp))) then
             dmax = ieee_nan(); precession = ieee_nan(); perr = ieee_nan()
             return
         end if
-        precession = kepler_lrl_angle(q(:, 1), v(:, 1)) - ang0
-        precession = atan2(sin(precession), cos(precession))
-        call kepler_exact(q0, v0, s%time(), qx, vx, st)
+        a0 = 0.0_wp; a1 = 0.0_wp; lz = 0.0_wp
+        call kepler_lrl(q0(1:d), v0(1:d), a0(1:d))
+        call kepler_lrl(q(:, 1), v(:, 1), a1(1:d))
+        if (d == 2) then
+            lz = [0.0_wp, 0.0_wp, 1.0_wp]
+        else
+            lz = cross(q0, v0)
+        end if
+        ax = cross(a0, a1)
+        precession = atan2(dot_product(ax, lz) / norm2(lz), dot_product(a0, a1))
+        call kepler_exact(q0(1:d), v0(1:d), s%time(), qx, vx, st)
         perr = sqrt(sum((q(:, 1) - qx)**2) + sum((v(:, 1) - vx)**2))
+    end subroutine diagnose
 
-        nrep = 3
-        do r = 1, size(reps)
-            call fsym_new_stepper(name, model, 2, 1, s, st, msg)
-            q(:, 1) = q0; v(:, 1) = v0
-            call system_clock(t1)
+    pure function cross(a, b) result(c)
+        real(wp), intent(in) :: a(3), b(3)
+        real(wp) :: c(3)
+        c = [a(2) * b(3) - a(3) * b(2), a(3) * b(1) - a(1) * b(3), a(1) * b(2) - a(2) * b(1)]
+    end function cross
+
+    !> Seconds of one whole run (the integration alone, `stepper%run`); short runs are
+    !> repeated `inner` times within the sample (chosen on the first round) and divided.
+    real(wp) function timed_run(io, im, ie) result(t)
+        integer, intent(in) :: io, im, ie
+        type(kepler_model_t) :: model
+        class(stepper_t), allocatable :: s
+        real(wp) :: q0(3), v0(3), period, h
+        real(wp), allocatable :: q(:, :), v(:, :)
+        integer(ik) :: nsteps
+        integer(int64) :: t1
+        integer :: d, r, st
+        d = DIMS(io)
+        call orbit(io, q0, v0, period)
+        call run_size(io, nper(ie, im, io), nsteps, h)
+        allocate (q(d, 1), v(d, 1))
+        call system_clock(t1)
+        do r = 1, inner(ie, im, io)
+            call fsym_new_stepper(trim(names(im)), model, d, 1, s, st, msg)
+            q(:, 1) = q0(1:d); v(:, 1) = v0(1:d)
             call s%run(model, q, v, h, nsteps, st)
-            reps(r) = seconds_since(t1)
-            if (r == 1 .and. reps(1) < 0.02_wp) nrep = size(reps)
-            if (r >= nrep) exit
         end do
-        time = median(reps(1:nrep))
-    end subroutine one_run
+        t = seconds_since(t1) / inner(ie, im, io)
+        if (samples(1, ie, im, io) /= samples(1, ie, im, io) .and. t * inner(ie, im, io) &
+            < TMIN_RUN) then               ! first round: fix the inner repetitions
+            inner(ie, im, io) = min(1000, ceiling(TMIN_RUN / max(t, 1.0e-7_wp)))
+        end if
+    end function timed_run
 
     !> Measured cost of a gradient evaluation relative to a force evaluation (Kepler model,
-    !> one body, through the model's type-bound procedures; median of 7).
+    !> one body, through the model's type-bound procedures; minimum of 7 interleaved pairs).
     real(wp) function gradient_cost()
         type(kepler_model_t) :: model
         real(wp) :: q(2, 1), a(2, 1), g(2, 1), tf(7), tg(7), sink
@@ -215,279 +360,103 @@ contains
             sink = sink + g(1, 1)
         end do
         if (sink == 0.123_wp) write (output_unit, '(a)') '.'
-        gradient_cost = median(tg) / median(tf)
+        gradient_cost = minval(tg) / minval(tf)
     end function gradient_cost
-
-    !> Time at which the error first falls to `target` along the sweep (coarse to fine),
-    !> interpolated in log-log between the two bracketing runs. -1 when never reached; the
-    !> time of the coarsest run (flagged by `coarse`) when already reached there.
-    real(wp) function time_to(err, t, n, target, coarse)
-        real(wp), intent(in) :: err(:), t(:), target
-        integer, intent(in) :: n
-        logical, intent(out) :: coarse
-        integer :: k
-        real(wp) :: f
-        time_to = -1.0_wp
-        coarse = .false.
-        do k = 1, n
-            if (.not. (err(k) <= target)) cycle
-            if (.not. (t(k) > 0.0_wp)) cycle
-            if (k == 1) then
-                time_to = t(1); coarse = .true.
-            else if (.not. (err(k - 1) > target .and. t(k - 1) > 0.0_wp .and. &
-                            err(k - 1) < huge(1.0_wp))) then
-                time_to = t(k)
-            else
-                f = log(target / err(k - 1)) / log(err(k) / err(k - 1))
-                time_to = exp(log(t(k - 1)) + f * (log(t(k)) - log(t(k - 1))))
-            end if
-            return
-        end do
-    end function time_to
-
-    !> The markdown report.
-    subroutine write_report()
-        integer, parameter :: ntarget = 5
-        character(len=64) :: tname(ntarget)
-        integer :: tio(ntarget), kt, j, rank, order(nm), iu, nreach
-        real(wp) :: ttarget(nm), tval(ntarget), etarget(size(de, 1)), nfirst
-        logical :: coarse(nm)
-        character(len=16) :: cell, kind
-
-        tname = [character(len=64) :: 'max abs(dE/E) <= 1e-4, e = 0.9 orbit, 10 periods', &
-                 'max abs(dE/E) <= 1e-8, e = 0.9 orbit, 10 periods', &
-                 'abs(precession) <= 1e-6 rad after 10 periods (e = 0.9)', &
-                 'max abs(dE/E) <= 1e-4, e = 0.6 orbit, 200 periods', &
-                 'max abs(dE/E) <= 1e-8, e = 0.6 orbit, 200 periods']
-        tio = [1, 1, 1, 2, 2]
-        tval = [1.0e-4_wp, 1.0e-8_wp, 1.0e-6_wp, 1.0e-4_wp, 1.0e-8_wp]
-
-        open (newunit=iu, file=trim(md_path), status='replace', action='write')
-        write (iu, '(a)') '# Work-precision: error against run time', '', &
-            'Generated by `bash scripts/workprec.sh` (program `fsym-workprec`, plot by '// &
-            '`scripts/plot_workprec.py`); every number below comes from that run. The raw '// &
-            'table of every run is `doc/work-precision.csv`.', '', &
-            '- Hardware: '//trim(hardware), '- Compiler: '//trim(compiler), &
-            '- Flags: `'//trim(flags)//'`'
-        write (iu, '(a,f0.1,a)') '- Total run time of the study: ', t_start, ' s'
-        write (iu, '(a)') '- The machine was shared with other jobs while this ran: times '// &
-            'are medians of 3 to 7 repeats but still noisy (a few 10 %).', '', &
-            '## Setup', '', &
-            '- Orbits: the paper''s q = (10, 0), v = (0, 0.1) (e = 0.9) over 10 periods, and '// &
-            'the Hairer-Lubich-Wanner orbit q = (0.4, 0), v = (0, 2) (e = 0.6) over 200 periods.'
-        write (iu, '(a,i0,a,i0,a)') '- Step sizes: eps = P/N with N geometric from 100 to '// &
-            '20000, ', nsweep(1), ' values on the e = 0.9 orbit, ', nsweep(2), &
-            ' on the e = 0.6 orbit.'
-        write (iu, '(a)') '- Per run: wall time of the integration alone (`stepper%run`, '// &
-            'system_clock, median of 3 repeats, of 7 when a run is shorter than 20 ms), '// &
-            'force and gradient evaluations (the library''s counters), max relative energy '// &
-            'error over every step, precession of the LRL vector at the end, phase-space error '// &
-            'at the end against `kepler_exact` (diagnostics in a separate, untimed run).', &
-            '- All methods use the library''s Kepler model. The splitting methods take the '// &
-            'kernel''s specialised Kepler path: `integrator_t%run` runs every step in one '// &
-            'kernel call, at the cost of a hand-written loop (`doc/benchmarks.md`). RKN is '// &
-            'its own stepper and calls the model''s type-bound `acceleration` for each of '// &
-            'its evaluations, so part of its time is call overhead the splitting methods do '// &
-            'not pay; the plot against evaluations is free of it.'
-        write (iu, '(a,f0.3,a)') '- Measured cost of a gradient evaluation relative to a '// &
-            'force evaluation (Kepler model, one body): ', gcost, '; the plot''s '// &
-            '"effective evaluations" are F + that ratio x G.'
-        write (iu, '(a)') '', '![work-precision](figures/work-precision.png)', ''
-
-        write (iu, '(a)') '## Time to reach a target error, ranked', '', &
-            'Time of a whole run (the stated number of periods) interpolated log-log between '// &
-            'the two sweep points that bracket the target. `<=` : already reached at the '// &
-            'coarsest step P/100 (the time shown is that run''s). `-` : not reached at P/20000 '// &
-            '(or the run failed). F = forward method (all weights >= 0).', ''
-        do kt = 1, ntarget
-            do j = 1, nm
-                select case (kt)
-                case (3)
-                    etarget = abs(prec(:, j, tio(kt)))
-                case default
-                    etarget = de(:, j, tio(kt))
-                end select
-                ttarget(j) = time_to(etarget(1:nsweep(tio(kt))), tim(:, j, tio(kt)), &
-                                     nsweep(tio(kt)), tval(kt), coarse(j))
-            end do
-            call rank_order(ttarget, order)
-            write (iu, '(a)') '### '//trim(tname(kt)), '', &
-                '| rank | method | kind | order | time to target (ms) |', '|---|---|---|---|---|'
-            rank = 0
-            nreach = 0
-            do j = 1, nm
-                im = order(j)
-                kind = merge('F          ', 'non-forward', fwd(im))
-                if (trim(names(im)) == 'RKN') kind = 'RKN'
-                if (ttarget(im) > 0.0_wp) then
-                    rank = rank + 1
-                    nreach = nreach + 1
-                    cell = ms(ttarget(im))
-                    if (coarse(im)) cell = '<= '//trim(cell)
-                    write (iu, '(a,i0,a,i0,a)') '| ', rank, ' | '//trim(names(im))//' | '// &
-                        trim(kind)//' | ', ordm(im), ' | '//trim(cell)//' |'
-                else
-                    write (iu, '(a,i0,a)') '| - | '//trim(names(im))//' | '//trim(kind)//' | ', &
-                        ordm(im), ' | - |'
-                end if
-            end do
-            nfirst = count(fwd(order(1:min(5, nreach))))
-            write (iu, '(a)') ''
-            call compare(iu, 'All splitting methods', ttarget, 0)
-            call compare(iu, 'Fourth-order splitting methods only (the paper''s comparison)', &
-                         ttarget, 4)
-            write (iu, '(a,i0,a)') '- Forward methods among the five fastest: ', nint(nfirst), '.'
-            write (iu, '(a)') ''
-        end do
-        close (iu)
-    end subroutine write_report
-
-    !> Every measured quantity to the HDF5 file (written atomically by `fsym_h5`).
-    subroutine write_h5()
-        type(h5_file_t) :: f
-        character(len=8), parameter :: grp(norbit) = [character(len=8) :: 'e0.9', 'e0.6']
-        integer, parameter :: nper(norbit) = [10, 200]
-        character(len=:), allocatable :: list, g
-        character(len=512) :: msg
-        integer :: st, j, k
-        list = trim(names(1))
-        do j = 2, nm
-            list = list//','//trim(names(j))
-        end do
-        msg = ''
-        call f%create(trim(h5_path), st, msg)
-        if (st /= FSYM_SUCCESS) then
-            write (output_unit, '(a)') 'fsym-workprec: '//trim(msg)
-            error stop 1
-        end if
-        call f%set_attr('/', 'methods', list, st, msg)
-        if (st == FSYM_SUCCESS) call f%set_attr('/', 'hardware', trim(hardware), st, msg)
-        if (st == FSYM_SUCCESS) call f%set_attr('/', 'compiler', trim(compiler), st, msg)
-        if (st == FSYM_SUCCESS) call f%set_attr('/', 'flags', trim(flags), st, msg)
-        if (st == FSYM_SUCCESS) call f%set_attr('/', 'gradient_cost', gcost, st, msg)
-        if (st == FSYM_SUCCESS) call f%write('forward', merge(1, 0, fwd), st, msg)
-        do j = 1, norbit
-            if (st /= FSYM_SUCCESS) exit
-            g = trim(grp(j)); k = nsweep(j)
-            call f%make_group(g, st, msg)
-            if (st == FSYM_SUCCESS) call f%set_attr(g, 'periods', nper(j), st, msg)
-            if (st == FSYM_SUCCESS) call f%write(g//'/steps_per_period', &
-                                                 steps_per_period(1:k, j), st, msg)
-            if (st == FSYM_SUCCESS) call f%write(g//'/time_s', tim(1:k, :, j), st, msg)
-            if (st == FSYM_SUCCESS) call f%write(g//'/force_evals', nfe(1:k, :, j), st, msg)
-            if (st == FSYM_SUCCESS) call f%write(g//'/grad_evals', nge(1:k, :, j), st, msg)
-            if (st == FSYM_SUCCESS) call f%write(g//'/max_rel_energy_error', &
-                                                 de(1:k, :, j), st, msg)
-            if (st == FSYM_SUCCESS) call f%write(g//'/precession_rad', prec(1:k, :, j), &
-                                                 st, msg)
-            if (st == FSYM_SUCCESS) call f%write(g//'/phase_error', phase(1:k, :, j), &
-                                                 st, msg)
-        end do
-        if (st == FSYM_SUCCESS) then
-            call f%close(st, msg)
-        else
-            call f%abort()
-        end if
-        if (st /= FSYM_SUCCESS) then
-            write (output_unit, '(a)') 'fsym-workprec: HDF5 output failed: '//trim(msg)
-            error stop 1
-        end if
-    end subroutine write_h5
-
-    !> One line: fastest forward against fastest non-forward splitting method (RKN excluded),
-    !> among methods of order `only` (0: all).
-    subroutine compare(iu, label, t, only)
-        integer, intent(in) :: iu, only
-        character(len=*), intent(in) :: label
-        real(wp), intent(in) :: t(:)
-        integer :: j, bf, bn
-        bf = 0; bn = 0
-        do j = 1, nm
-            if (.not. (t(j) > 0.0_wp) .or. trim(names(j)) == 'RKN') cycle
-            if (only > 0 .and. ordm(j) /= only) cycle
-            if (fwd(j)) then
-                if (bf == 0) then
-                    bf = j
-                else if (t(j) < t(bf)) then
-                    bf = j
-                end if
-            else
-                if (bn == 0) then
-                    bn = j
-                else if (t(j) < t(bn)) then
-                    bn = j
-                end if
-            end if
-        end do
-        if (bf == 0 .or. bn == 0) then
-            write (iu, '(a)') '- '//label//': one of the two kinds never reached the target.'
-            return
-        end if
-        write (iu, '(a)') '- '//label//': fastest forward '//trim(names(bf))//' ('// &
-            trim(ms(t(bf)))//' ms), fastest non-forward '//trim(names(bn))//' ('// &
-            trim(ms(t(bn)))//' ms): '//trim(verdict(t(bn) / t(bf)))//' (ratio non-forward/'// &
-            'forward '//trim(ratio(t(bn) / t(bf)))//').'
-    end subroutine compare
-
-    !> Who wins at a ratio (time non-forward / time forward); within 15 % (the timing noise
-    !> of a shared machine) a tie.
-    function verdict(r) result(text)
-        real(wp), intent(in) :: r
-        character(len=48) :: text
-        if (r > 1.15_wp) then
-            text = 'forward wins'
-        else if (r < 1.0_wp / 1.15_wp) then
-            text = 'non-forward wins'
-        else
-            text = 'a tie within the timing noise (15 %)'
-        end if
-    end function verdict
-
-    !> Seconds as milliseconds, 3 decimals.
-    function ms(t) result(text)
-        real(wp), intent(in) :: t
-        character(len=16) :: text
-        write (text, '(f16.3)') 1.0e3_wp * t
-        text = adjustl(text)
-    end function ms
-
-    !> A ratio with 2 decimals.
-    function ratio(x) result(text)
-        real(wp), intent(in) :: x
-        character(len=16) :: text
-        write (text, '(f16.2)') x
-        text = adjustl(text)
-    end function ratio
 
     !> Order of accuracy of every method (RKN: 4).
     subroutine method_orders()
         type(scheme_t) :: sc
-        integer :: j, st
+        integer :: j, st2
         do j = 1, nm
             ordm(j) = 4
             if (trim(names(j)) == 'RKN') cycle
-            call fsym_scheme_by_name(trim(names(j)), sc, st)
-            if (st == FSYM_SUCCESS) ordm(j) = sc%order
+            call fsym_scheme_by_name(trim(names(j)), sc, st2)
+            if (st2 == FSYM_SUCCESS) ordm(j) = sc%order
         end do
     end subroutine method_orders
 
-    !> Indices sorting t ascending, with the non-positive (not reached) last.
-    subroutine rank_order(t, order)
-        real(wp), intent(in) :: t(:)
-        integer, intent(out) :: order(:)
-        integer :: i, j, k
-        real(wp) :: key(size(t))
-        key = t
-        where (.not. (key > 0.0_wp)) key = huge(1.0_wp)
-        order = [(i, i=1, size(t))]
-        do i = 2, size(t)
-            k = order(i); j = i - 1
-            do while (j >= 1)
-                if (key(order(j)) <= key(k)) exit
-                order(j + 1) = order(j); j = j - 1
+    !> The CSV of every run (temporary name, renamed).
+    subroutine write_csv()
+        integer :: u
+        call fsym_open_text(trim(csv_path), u, st, msg)
+        if (st /= FSYM_SUCCESS) call die(msg)
+        write (u, '(a)') 'orbit,d,method,forward,steps_per_period,time_min_s,time_median_s,'// &
+            'time_max_s,force_evals,grad_evals,max_rel_energy_error,precession_rad,phase_error'
+        do io = 1, NORBIT
+            do im = 1, nm
+                do ie = 1, npt(im, io)
+                    write (u, '(i0,a,i0,a,a,a,l1,9(a,es12.5))') io, ',', DIMS(io), ',', &
+                        trim(names(im)), ',', fwd(im), ',', nper(ie, im, io), ',', &
+                        tmin(ie, im, io), ',', tmed(ie, im, io), ',', tmax(ie, im, io), ',', &
+                        nfe(ie, im, io), ',', nge(ie, im, io), ',', de(ie, im, io), ',', &
+                        prec(ie, im, io), ',', phase(ie, im, io)
+                end do
             end do
-            order(j + 1) = k
         end do
-    end subroutine rank_order
+        call fsym_commit_text(u, trim(csv_path), st, msg)
+        if (st /= FSYM_SUCCESS) call die(msg)
+    end subroutine write_csv
+
+    !> Every measured quantity to HDF5 (atomic): per orbit group, per method a group with
+    !> one value per step size.
+    subroutine write_h5()
+        type(h5_file_t) :: f
+        character(len=:), allocatable :: g
+        integer :: n
+        call f%create(trim(h5_path), st, msg)
+        if (st /= FSYM_SUCCESS) call die(msg)
+        call fsym_h5md_header(f, 'fsym-workprec', FSYM_VERSION, 'Kepler units: G M = 1, '// &
+                              'm = 1; run times in seconds of wall clock', st, msg)
+        call h5ok(f)
+        call f%set_attr('parameters', 'hardware', trim(hardware), st, msg); call h5ok(f)
+        call f%set_attr('parameters', 'build_flags', trim(flags), st, msg); call h5ok(f)
+        call f%set_attr('parameters', 'mu', 1.0_wp, st, msg); call h5ok(f)
+        call f%set_attr('parameters', 'gradient_cost', gcost, st, msg); call h5ok(f)
+        call f%set_attr('parameters', 'repetitions', nreps, st, msg); call h5ok(f)
+        call f%set_attr('parameters', 'total_seconds', t_all, st, msg); call h5ok(f)
+        call f%set_attr('parameters', 'base_grid', [NMIN, nmax], st, msg); call h5ok(f)
+        call f%set_attr('parameters', 'base_points', nsweep, st, msg); call h5ok(f)
+        call f%set_attr('parameters', 'energy_targets', ETARGET, st, msg); call h5ok(f)
+        call f%set_attr('parameters', 'precession_target', PTARGET, st, msg); call h5ok(f)
+        call f%set_attr('parameters', 'methods', names, st, msg); call h5ok(f)
+        do io = 1, NORBIT
+            call f%set_attr(trim(GROUP(io)), 'description', trim(ORBIT_NAME(io)), st, msg)
+            call h5ok(f)
+            call f%set_attr(trim(GROUP(io)), 'dimension', DIMS(io), st, msg); call h5ok(f)
+            call f%set_attr(trim(GROUP(io)), 'periods', PERIODS(io), st, msg); call h5ok(f)
+            do im = 1, nm
+                n = npt(im, io)
+                g = trim(GROUP(io))//'/'//fsym_h5_safe_name(names(im))
+                call f%set_attr(g, 'label', trim(names(im)), st, msg); call h5ok(f)
+                call f%set_attr(g, 'forward', merge(1, 0, fwd(im)), st, msg); call h5ok(f)
+                call f%set_attr(g, 'order', ordm(im), st, msg); call h5ok(f)
+                call f%write(g//'/steps_per_period', nper(1:n, im, io), st, msg); call h5ok(f)
+                call f%write(g//'/time_min', tmin(1:n, im, io), st, msg); call h5ok(f)
+                call f%write(g//'/time_median', tmed(1:n, im, io), st, msg); call h5ok(f)
+                call f%write(g//'/time_max', tmax(1:n, im, io), st, msg); call h5ok(f)
+                call f%write(g//'/inner_repeats', inner(1:n, im, io), st, msg); call h5ok(f)
+                call f%write(g//'/force_evals', nfe(1:n, im, io), st, msg); call h5ok(f)
+                call f%write(g//'/grad_evals', nge(1:n, im, io), st, msg); call h5ok(f)
+                call f%write(g//'/max_rel_energy_error', de(1:n, im, io), st, msg); call h5ok(f)
+                call f%write(g//'/precession_rad', prec(1:n, im, io), st, msg); call h5ok(f)
+                call f%write(g//'/phase_error', phase(1:n, im, io), st, msg); call h5ok(f)
+                call f%set_attr(g//'/time_min', 'unit', 's', st, msg); call h5ok(f)
+                call f%set_attr(g//'/time_median', 'unit', 's', st, msg); call h5ok(f)
+                call f%set_attr(g//'/time_max', 'unit', 's', st, msg); call h5ok(f)
+                call f%set_attr(g//'/precession_rad', 'unit', 'rad', st, msg); call h5ok(f)
+            end do
+        end do
+        call f%close(st, msg)
+        if (st /= FSYM_SUCCESS) call die('HDF5 output failed: '//msg)
+    end subroutine write_h5
+
+    !> After an HDF5 call: on failure abort the file (no output) and stop with the message.
+    subroutine h5ok(f)
+        type(h5_file_t), intent(inout) :: f
+        if (st /= FSYM_SUCCESS) then
+            call f%abort()
+            call die('HDF5 output failed: '//msg)
+        end if
+    end subroutine h5ok
 
 end program fsym_workprec

@@ -3,11 +3,14 @@
 
 Usage: plot_figures.py [OUT_DIR [FIG_DIR]]   (defaults: out, doc/figures)
 
-Coefficient scenes (engNf) give two PNGs: engNf.png (energy error coefficient against t/P)
-and angNf.png (precession error coefficient against t/P). Force-point scenes (backX) give
-backX.png: the force-evaluation points over the dashed exact orbit; forward methods as
-circles, non-forward methods as squares (first solid, then hollow), RKN as plus signs.
-acoef, scanm2 and scangfr5 give the GFR5 coefficients and the two parameter scans.
+Every figure is written as PNG (for the markdown pages) and as vector PDF. Coefficient
+scenes (engNf) give engNf (energy error coefficient against t/P) and angNf (precession error
+coefficient against t/P), each with a zoom on the first pericentre passage. Force-point
+scenes (backX) give backX: the force-evaluation points over the dashed exact orbit; forward
+methods as circles, non-forward methods as squares (first solid, then hollow), RKN as plus
+signs, gradient evaluations as crosses, the step ends as black dots. acoef, scanm2 and
+scangfr5 give the GFR5 coefficients and the two parameter scans. Groups are found through
+their `label` attribute (the group names are safe forms of the labels).
 """
 import os
 import sys
@@ -18,6 +21,8 @@ matplotlib.use("Agg")
 import h5py  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 COEF_SCENES = ["eng3f", "eng4f", "eng4f2", "eng5f", "eng6f"]
 POINT_SCENES = ["backfr", "back3f", "back4f", "back4f2", "back5f", "back6f"]
@@ -28,34 +33,58 @@ def text(x):
 
 
 def methods(f):
-    return text(f.attrs["methods"]).split(",")
+    """The method labels of a scene, in the order the scene ran them."""
+    return [text(m) for m in f["parameters"].attrs["methods"]]
+
+
+def group(f, where, label):
+    """The group under `where` whose `label` attribute is `label`."""
+    for g in f[where].values():
+        if text(g.attrs.get("label", g.attrs.get("method", ""))) == label:
+            return g
+    raise KeyError(f"no {where} group labelled {label}")
+
+
+def save(fig, figdir, name):
+    fig.savefig(os.path.join(figdir, name + ".png"), dpi=110)
+    fig.savefig(os.path.join(figdir, name + ".pdf"), metadata={"CreationDate": None})
+    plt.close(fig)
 
 
 def coefficient_figures(f, scene, figdir):
     """engNf.png and angNf.png from one coefficient scene."""
     for kind, prefix, ylabel in [
         ("energy_coefficient", "eng", r"$(E(t)-E_0)/(E_0\,\epsilon^4)$"),
-        ("precession_coefficient", "ang", r"LRL rotation angle $/\,\epsilon^4$"),
+        ("precession_coefficient", "ang", r"LRL rotation angle (rad) $/\,\epsilon^4$"),
     ]:
         fig, axs = plt.subplots(1, 2, figsize=(11, 4.6), gridspec_kw=dict(width_ratios=[3, 2]))
-        period = float(f.attrs["period"])
+        par = f["parameters"].attrs
+        period = float(par["period"])
+        lo, hi = 0.0, 0.0
         for m in methods(f):
-            obs = f["observables"][m][kind]
+            obs = group(f, "observables", m)[kind]
             t = obs["time"][()] / period
+            y = obs["value"][()]
             for ax in axs:
-                ax.plot(t, obs["value"][()], lw=1.2, label=m)
+                ax.plot(t, y, lw=1.2, label=m)
+            w = (t >= 0.49) & (t <= 0.51)
+            lo, hi = min(lo, y[w].min()), max(hi, y[w].max())
         for ax in axs:
             ax.axhline(0.0, color="0.6", lw=0.6)
             ax.set_xlabel("t / P")
+            ax.set_ylabel(ylabel)
         axs[1].set_xlim(0.49, 0.51)
+        pad = 0.06 * (hi - lo) + 1e-12
+        axs[1].set_ylim(lo - pad, hi + pad)
+        axs[1].xaxis.set_major_locator(MaxNLocator(4))
+        axs[1].yaxis.set_major_locator(MaxNLocator(6))
         axs[1].set_title("zoom: first pericentre passage")
-        axs[0].set_ylabel(ylabel)
-        n = round(period / float(f.attrs["eps"]))
-        axs[0].set_title(f"{prefix}{scene[3:]}: e = 0.9 Kepler orbit, " + r"$\epsilon$" + f" = P/{n}")
+        n = round(period / float(par["eps"]))
+        what = "energy error" if prefix == "eng" else "precession error"
+        axs[0].set_title(f"{what}, e = 0.9 Kepler orbit, " + r"$\epsilon$" + f" = P/{n}")
         axs[0].legend(frameon=False)
         fig.tight_layout()
-        fig.savefig(os.path.join(figdir, prefix + scene[3:] + ".png"), dpi=110)
-        plt.close(fig)
+        save(fig, figdir, prefix + scene[3:])
 
 
 def point_figure(f, scene, figdir):
@@ -67,13 +96,14 @@ def point_figure(f, scene, figdir):
     pts = [qe[np.argmin(np.hypot(qe[:, 0], qe[:, 1]))][None, :]]
     colours = ["tab:red", "tab:blue", "tab:green", "tab:purple"]
     for i, m in enumerate(methods(f)):
-        g = f["force_evaluations"][m]
+        g = group(f, "force_evaluations", m)
+        par = group(f, "parameters", m).attrs
         q = g["position"][()][:, 0, :]
         kind = g["kind"][()]
         col = colours[i % len(colours)]
-        if text(g.attrs["method"]) == "RKN":
+        if text(par["method"]) == "RKN":
             style = dict(marker="+", s=120, color=col, linewidths=1.6)
-        elif int(g.attrs["forward"]) == 1:
+        elif int(par["forward"]) == 1:
             style = dict(marker="o", s=70, facecolors="none", edgecolors=col, linewidths=1.4)
         else:
             face = col if nonfwd == 0 else "none"
@@ -84,19 +114,21 @@ def point_figure(f, scene, figdir):
         if np.any(kind == 2):
             ax.scatter(q[kind == 2, 0], q[kind == 2, 1], marker="x", s=25, color=col, zorder=4,
                        label=f"{m} gradient points")
-        p = f["particles"][m]["position/value"][()][:, 0, :]
+        p = group(f, "particles", m)["position/value"][()][:, 0, :]
         pts += [q, p]
         ax.plot(p[:, 0], p[:, 1], ":", color=col, lw=0.8)
-        ax.scatter(p[:, 0], p[:, 1], marker="o", s=22, color="k", zorder=5)
+        ax.scatter(p[:, 0], p[:, 1], marker="o", s=22, color="k", zorder=5,
+                   label="step ends (positions after 0, 1, 2 steps)" if i == 0 else None)
     if scene == "backfr" and "substeps" in f:
         sub = f["substeps/FR/position/value"][()][:, 0, :]
-        fq = f["force_evaluations/FR/position"][()][:, 0, :]
+        fq = group(f, "force_evaluations", "FR")["position"][()][:, 0, :]
         path = []
         for k in range(len(fq)):
             path += [sub[k], fq[k]]
         path.append(sub[-1])
         path = np.array(path)
-        ax.plot(path[:, 0], path[:, 1], "-", color="tab:red", lw=0.8)
+        ax.plot(path[:, 0], path[:, 1], "-", color="tab:red", lw=0.8,
+                label="FR's three T2 substeps (triangles)")
         labels = ["1", "1a", "1b", "2", "2a", "2b", "3"]
         for k, lab in enumerate(labels[: len(sub)]):
             ax.annotate(lab, sub[k], textcoords="offset points", xytext=(6, 4))
@@ -111,14 +143,17 @@ def point_figure(f, scene, figdir):
     ax.set_xlim(mid[0] - half, mid[0] + half)
     ax.set_ylim(mid[1] - half, mid[1] + half)
     ax.set_aspect("equal")
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
-    n = round(float(f.attrs["period"]) / float(f.attrs["eps"]))
-    ax.set_title(f"{scene}: two steps to the pericentre, " + r"$\epsilon$" + f" = P/{n}")
-    ax.legend(frameon=False, fontsize=8, loc="best")
+    ax.set_xlabel("x (L)")
+    ax.set_ylabel("y (L)")
+    ax.xaxis.set_major_locator(MaxNLocator(5))
+    ax.yaxis.set_major_locator(MaxNLocator(5))
+    par = f["parameters"].attrs
+    n = round(float(par["period"]) / float(par["eps"]))
+    ax.set_title("force-evaluation points, two steps to the pericentre, "
+                 + r"$\epsilon$" + f" = P/{n}", fontsize=10)
+    ax.legend(frameon=True, framealpha=0.85, fontsize=8, loc="best")
     fig.tight_layout()
-    fig.savefig(os.path.join(figdir, scene + ".png"), dpi=110)
-    plt.close(fig)
+    save(fig, figdir, scene)
 
 
 def acoef_figure(f, figdir):
@@ -127,14 +162,14 @@ def acoef_figure(f, figdir):
     for name in ["a0", "a1", "a2"]:
         ax.plot(al, f["gfr5"][name][()], label=name)
     ax.axhline(0.0, color="0.6", lw=0.6)
-    ax.axvline(float(f["gfr5"].attrs["alpha_least_negative_a0"]), color="0.6", ls=":", lw=0.8)
+    ax.axvline(float(f["gfr5"].attrs["alpha_least_negative_a0"]), color="0.6", ls=":", lw=0.8,
+               label=r"$a_0$ least negative")
     ax.set_xlabel(r"$\alpha$")
     ax.set_ylabel("GFR5 substep fraction")
-    ax.set_title("acoef: coefficients of GFR5 against alpha")
+    ax.set_title(r"GFR5 substep fractions $a_0, a_1, a_2$ against $\alpha$")
     ax.legend(frameon=False)
     fig.tight_layout()
-    fig.savefig(os.path.join(figdir, "acoef.png"), dpi=110)
-    plt.close(fig)
+    save(fig, figdir, "acoef")
 
 
 def scan_figure(f, scene, figdir):
@@ -142,9 +177,9 @@ def scan_figure(f, scene, figdir):
     x = s["t1"][()] if "t1" in s else s["alpha"][()]
     xl = r"$t_1$" if "t1" in s else r"$\alpha$"
     fig, axs = plt.subplots(1, 2, figsize=(10, 4))
-    axs[0].plot(x, s["energy_max"][()], "o-", ms=3)
+    axs[0].plot(x, s["energy_max"][()], "o-", ms=3, label="measured")
     axs[0].set_ylabel("max |energy coefficient| over one period")
-    axs[1].plot(x, s["precession_at_P"][()], "o-", ms=3)
+    axs[1].plot(x, s["precession_at_P"][()], "o-", ms=3, label="measured")
     axs[1].axhline(0.0, color="0.6", lw=0.6)
     axs[1].set_ylabel("precession coefficient at t = P")
     if "t1_zero" in s.attrs and int(s.attrs["zero_found"]) == 1:
@@ -152,14 +187,19 @@ def scan_figure(f, scene, figdir):
                        label=f"zero at t1 = {float(s.attrs['t1_zero']):.4f}")
         axs[1].legend(frameon=False)
     if "alpha_least_energy" in s.attrs:
-        axs[0].axvline(float(s.attrs["alpha_least_energy"]), color="tab:red", ls=":")
-        axs[1].axvline(float(s.attrs["alpha_least_precession"]), color="tab:red", ls=":")
+        a = float(s.attrs["alpha_least_energy"])
+        axs[0].axvline(a, color="tab:red", ls=":", label=f"least at alpha = {a:.3f}")
+        a = float(s.attrs["alpha_least_precession"])
+        axs[1].axvline(a, color="tab:red", ls=":", label=f"least |precession| at alpha = {a:.3f}")
     for ax in axs:
         ax.set_xlabel(xl)
-    fig.suptitle(f"{scene}: " + ("M2(t1)" if "t1" in s else "GFR5(alpha)") + ", eps = P/5000")
+        ax.legend(frameon=False, fontsize=8)
+    n = round(float(f["parameters"].attrs["period"]) / float(f["parameters"].attrs["eps"]))
+    fig.suptitle(("M2 against its free parameter " + r"$t_1$" if "t1" in s else
+                  "GFR5 against its free parameter " + r"$\alpha$")
+                 + ", e = 0.9 Kepler orbit, " + r"$\epsilon$" + f" = P/{n}")
     fig.tight_layout()
-    fig.savefig(os.path.join(figdir, scene + ".png"), dpi=110)
-    plt.close(fig)
+    save(fig, figdir, scene)
 
 
 def main():

@@ -14,6 +14,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 SHOW = ["T2", "FR", "A", "C", "BM", "RKN"]
+MARKERS = ["o", "s", "^", "v", "D", "P", "X", "*"]  # one per method shown, with its colour
 
 
 def names_of(attr):
@@ -30,6 +31,8 @@ def finish(fig, ax, out, name, xlabel, ylabel, title):
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(os.path.join(out, name), dpi=120)
+    fig.savefig(os.path.join(out, os.path.splitext(name)[0] + ".pdf"),
+                metadata={"CreationDate": None})
     plt.close(fig)
 
 
@@ -81,11 +84,14 @@ def main():
             ax.plot(s[:, 0], s[:, 2:].sum(axis=1), "k", lw=0.9, label="I")
             ax.set_title(f"{m}, h = 0.5 x*/omega", fontsize=9)
             ax.legend(fontsize=7)
+            ax.set_ylabel("oscillatory energy (I_j / I_1(0))")
         for ax in axes[1]:
             ax.set_xlabel("t")
         fig.suptitle("FPU (omega = 50): oscillatory energies of the stiff springs")
         fig.tight_layout()
         fig.savefig(os.path.join(out, "stability_fpu_exchange.png"), dpi=120)
+        fig.savefig(os.path.join(out, "stability_fpu_exchange.pdf"),
+                    metadata={"CreationDate": None})
         plt.close(fig)
 
         # 4. FPU scan
@@ -110,7 +116,9 @@ def main():
         for m in SHOW:
             n = need[idx[m]].astype(float)
             n[n <= 0] = np.nan
-            ax.loglog(1.0 - ecc, n, "o-", label=m)
+            k = SHOW.index(m) if m in SHOW else 0
+            ax.loglog(1.0 - ecc, n, "-", marker=MARKERS[k % len(MARKERS)],
+                      ms=9 - k, label=m)
         ax.axhline(nmax, color="k", ls=":", lw=0.8)
         ax.invert_xaxis()
         finish(fig, ax, out, "stability_eccentric.png", "1 - e (pericentre distance)",
