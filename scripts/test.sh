@@ -7,12 +7,16 @@
 #                       per-method checks), the clients (F77, C, CMake consumer, fpm) and
 #                       example/user_model_test against the installed library;
 #   build/test-release  -O3 -march=native -ffp-contract=off: every pFUnit test case again,
-#                       so that the bitwise comparisons (label `bitwise`) hold there too.
+#                       so that the bitwise comparisons (label `bitwise`) hold there too;
+#                       this tree builds the library with OpenMP and the MPI parts
+#                       (FSYM_OPENMP, FSYM_MPI): threads and 1, 2, 4 ranks bitwise = serial.
 # It prints a summary per tree and ends with CTest's summary line
 # `100% tests passed, 0 tests failed out of N`; it exits non-zero when any test fails.
 # Arguments go to ctest, e.g. `scripts/test.sh -L bitwise` or `scripts/test.sh -R order`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+export FSYM_MPI=1   # the release tree builds the MPI parts: setup installs OpenMPI
+export FSYM_PLOTS=1 # h5py for the H5MD conformance tests of test/h5
 source scripts/setup.sh
 source scripts/pfunit.sh
 
@@ -23,18 +27,18 @@ release_flags="-O3 -march=native -ffp-contract=off"
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 
-build_tree() {   # build_tree NAME BUILD_TYPE FLAGS CLIENTS
-    local dir=build/test-$1
+build_tree() {   # build_tree NAME BUILD_TYPE FLAGS CLIENTS [CMAKE OPTIONS...]
+    local dir=build/test-$1 extra=("${@:5}")
     printf '[test] %s tree: %s (%s)\n' "$1" "$dir" "$3"
     cmake -S "$root" -B "$dir" -DFSYM_BUILD_TESTS=ON -DFSYM_TEST_TREE="$1" \
         -DFSYM_TEST_CLIENTS="$4" -DCMAKE_BUILD_TYPE="$2" -DPFUNIT_DIR="$FSYM_PFUNIT_DIR" \
-        -DCMAKE_Fortran_FLAGS_DEBUG="$3" -DCMAKE_Fortran_FLAGS_RELEASE="$3" > "$log" 2>&1 \
+        -DCMAKE_Fortran_FLAGS_DEBUG="$3" -DCMAKE_Fortran_FLAGS_RELEASE="$3" "${extra[@]}" > "$log" 2>&1 \
         || { cat "$log"; exit 1; }
     cmake --build "$dir" -j "$jobs" > "$log" 2>&1 || { cat "$log"; exit 1; }
 }
 
 build_tree debug Debug "$debug_flags" ON
-build_tree release Release "$release_flags" OFF
+build_tree release Release "$release_flags" OFF -DFSYM_OPENMP=ON -DFSYM_MPI=ON
 
 # one CTest over both trees
 mkdir -p build/test-all
