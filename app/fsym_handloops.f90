@@ -1,8 +1,8 @@
 !> Hand-written loops of FR, A, C, A6 and BM, the references of the ratio benchmark
 !> (`fsym-bench ratios`, `bash scripts/bench.sh --ratios`):
 !>
-!> - `calls_*`: the stages written out by hand on whole arrays, making the same model calls
-!>   as the library (`model%acceleration`, `model%gradient` through the abstract model, the
+!> - `calls_*`: the stages written out by hand on whole arrays (each update one plain loop
+!>   over all d*n values), making the same model calls as the library (`model%acceleration`, `model%gradient` through the abstract model, the
 !>   first-same-as-last force kept), with no checks, no saved state, no counters;
 !> - `inl2_*`, `inl3_*`: n independent Kepler orbits (mu = 1) in d = 2 or 3 with the force
 !>   written out: steps outside, bodies inside (that loop vectorises), each body's state in
@@ -35,16 +35,16 @@ contains
         st = 0
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h
         do i = 1, nsteps
-            q = q + d1 * v
+            call axpy(size(q), q, d1, v)
             call model%acceleration(q, a, st)
-            v = v + k2 * a
-            q = q + d3 * v
+            call axpy(size(v), v, k2, a)
+            call axpy(size(q), q, d3, v)
             call model%acceleration(q, a, st)
-            v = v + k4 * a
-            q = q + d3 * v
+            call axpy(size(v), v, k4, a)
+            call axpy(size(q), q, d3, v)
             call model%acceleration(q, a, st)
-            v = v + k2 * a
-            q = q + d1 * v
+            call axpy(size(v), v, k2, a)
+            call axpy(size(q), q, d1, v)
         end do
     end subroutine calls_fr
 
@@ -63,14 +63,14 @@ contains
         k1 = c(1) * h; d2 = c(2) * h; k3 = c(3) * h; g3 = u(3) * h**3
         call model%acceleration(q, a, st)
         do i = 1, nsteps
-            v = v + k1 * a
-            q = q + d2 * v
+            call axpy(size(v), v, k1, a)
+            call axpy(size(q), q, d2, v)
             call model%acceleration(q, a, st)
             call model%gradient(q, a, g, st)
-            v = v + (k3 * a + g3 * g)
-            q = q + d2 * v
+            call axpy2(size(v), v, k3, a, g3, g)
+            call axpy(size(q), q, d2, v)
             call model%acceleration(q, a, st)
-            v = v + k1 * a
+            call axpy(size(v), v, k1, a)
         end do
     end subroutine calls_a
 
@@ -88,17 +88,17 @@ contains
         st = 0
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h; g4 = u(4) * h**3
         do i = 1, nsteps
-            q = q + d1 * v
+            call axpy(size(q), q, d1, v)
             call model%acceleration(q, a, st)
-            v = v + k2 * a
-            q = q + d3 * v
+            call axpy(size(v), v, k2, a)
+            call axpy(size(q), q, d3, v)
             call model%acceleration(q, a, st)
             call model%gradient(q, a, g, st)
-            v = v + (k4 * a + g4 * g)
-            q = q + d3 * v
+            call axpy2(size(v), v, k4, a, g4, g)
+            call axpy(size(q), q, d3, v)
             call model%acceleration(q, a, st)
-            v = v + k2 * a
-            q = q + d1 * v
+            call axpy(size(v), v, k2, a)
+            call axpy(size(q), q, d1, v)
         end do
     end subroutine calls_c
 
@@ -118,23 +118,23 @@ contains
         call model%acceleration(q, a, st)
         call model%gradient(q, a, g, st)
         do i = 1, nsteps
-            v = v + (k1 * a + g1 * g)
-            q = q + d2 * v
+            call axpy2(size(v), v, k1, a, g1, g)
+            call axpy(size(q), q, d2, v)
             call model%acceleration(q, a, st)
-            v = v + k3 * a
-            q = q + d2 * v
+            call axpy(size(v), v, k3, a)
+            call axpy(size(q), q, d2, v)
             call model%acceleration(q, a, st)
-            v = v + k3 * a
-            q = q + d2 * v
+            call axpy(size(v), v, k3, a)
+            call axpy(size(q), q, d2, v)
             call model%acceleration(q, a, st)
-            v = v + k3 * a
-            q = q + d2 * v
+            call axpy(size(v), v, k3, a)
+            call axpy(size(q), q, d2, v)
             call model%acceleration(q, a, st)
-            v = v + k3 * a
-            q = q + d2 * v
+            call axpy(size(v), v, k3, a)
+            call axpy(size(q), q, d2, v)
             call model%acceleration(q, a, st)
             call model%gradient(q, a, g, st)
-            v = v + (k1 * a + g1 * g)
+            call axpy2(size(v), v, k1, a, g1, g)
         end do
     end subroutine calls_a6
 
@@ -153,25 +153,25 @@ contains
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h; d5 = c(5) * h
         k6 = c(6) * h; d7 = c(7) * h
         do i = 1, nsteps
-            q = q + d1 * v
+            call axpy(size(q), q, d1, v)
             call model%acceleration(q, a, st)
-            v = v + k2 * a
-            q = q + d3 * v
+            call axpy(size(v), v, k2, a)
+            call axpy(size(q), q, d3, v)
             call model%acceleration(q, a, st)
-            v = v + k4 * a
-            q = q + d5 * v
+            call axpy(size(v), v, k4, a)
+            call axpy(size(q), q, d5, v)
             call model%acceleration(q, a, st)
-            v = v + k6 * a
-            q = q + d7 * v
+            call axpy(size(v), v, k6, a)
+            call axpy(size(q), q, d7, v)
             call model%acceleration(q, a, st)
-            v = v + k6 * a
-            q = q + d5 * v
+            call axpy(size(v), v, k6, a)
+            call axpy(size(q), q, d5, v)
             call model%acceleration(q, a, st)
-            v = v + k4 * a
-            q = q + d3 * v
+            call axpy(size(v), v, k4, a)
+            call axpy(size(q), q, d3, v)
             call model%acceleration(q, a, st)
-            v = v + k2 * a
-            q = q + d1 * v
+            call axpy(size(v), v, k2, a)
+            call axpy(size(q), q, d1, v)
         end do
     end subroutine calls_bm
 
@@ -553,6 +553,28 @@ contains
             end do
         end do
     end subroutine inl3_bm
+    !> x <- x + s y over all m values (a plain loop: it vectorises whatever d is).
+    pure subroutine axpy(m, x, s, y)
+        integer, intent(in) :: m
+        real(wp), intent(inout) :: x(m)
+        real(wp), intent(in) :: s, y(m)
+        integer :: j
+        do j = 1, m
+            x(j) = x(j) + s * y(j)
+        end do
+    end subroutine axpy
+
+    !> x <- x + (s y + r z) over all m values.
+    pure subroutine axpy2(m, x, s, y, r, z)
+        integer, intent(in) :: m
+        real(wp), intent(inout) :: x(m)
+        real(wp), intent(in) :: s, y(m), r, z(m)
+        integer :: j
+        do j = 1, m
+            x(j) = x(j) + (s * y(j) + r * z(j))
+        end do
+    end subroutine axpy2
+
     !> Kepler acceleration in the plane, mu = 1, written as the library's model writes it.
     pure subroutine acc2(x, y, ax, ay)
         real(wp), intent(in) :: x, y

@@ -5,7 +5,6 @@
 !> g_j = (1/m_j) d/dq_j sum_i m_i |a_i|^2 (for unit masses the paper's grad |F|^2) and the
 !> potential energy. User data travels by extending `force_model_t`.
 module fsym_force
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use fsym_kinds, only: wp, ik
     use fsym_kernel_state, only: kernel_state_t
     implicit none
@@ -62,32 +61,7 @@ module fsym_force
         end subroutine record_iface
     end interface
 
-    public :: fsym_all_finite
-
 contains
-
-    !> True when all m values are finite: one sum in 16 interleaved partial sums (it
-    !> vectorises), an element-wise look only when the sum is not finite.
-    pure logical function fsym_all_finite(m, x)
-        integer, intent(in) :: m         !! number of values
-        real(wp), intent(in) :: x(m)     !! values
-        real(wp) :: acc(16), s
-        integer :: i, mb
-        if (m < 16) then
-            s = 0.0_wp
-            do i = 1, m
-                s = s + x(i)
-            end do
-        else
-            mb = m - mod(m, 16); acc = x(1:16)
-            do i = 17, mb, 16
-                acc = acc + x(i:i + 15)
-            end do
-            s = sum(acc) + sum(x(mb + 1:m))
-        end if
-        fsym_all_finite = abs(s) <= huge(s)
-        if (.not. fsym_all_finite) fsym_all_finite = all(ieee_is_finite(x))
-    end function fsym_all_finite
 
     !> Default gradient term: not provided (sets `stat` = 1). Override it together with
     !> `has_gradient`.

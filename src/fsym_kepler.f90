@@ -475,6 +475,8 @@ contains
         integer :: d, n, j0, m, k, l
         d = ks%d; n = ks%n
         ndone = 0
+        ! a few steps do not pay for the set-up (copies, checks, block loads): the kernel
+        if (nsteps < 4) return
         if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) return
         if (.not. (all(ieee_is_finite(q)) .and. all(ieee_is_finite(v)))) return
         if (ks%have_a) then

@@ -1,26 +1,20 @@
-!> The one splitting kernel: a loop over steps with the loop over the scheme's stage table
-!> inside, calling the force model directly. It knows no model; a model gets its speed from
-!> its own force routines. The modern integrator, the F77 face (its EXTERNAL routines in a
-!> small model type), the reverse-communication face and the C face all run this code.
-!>
-!> The state is `kernel_state_t` (`fsym_kernel_state`): named slot indices into a
-!> caller-owned work array `w(d, n, nslot)`, the force cache, the step in progress and the
-!> evaluation counters. A step never allocates and does no I/O. It either completes or
-!> leaves q, v (and the compensation terms) bitwise as they were on entry: every force and
-!> every new state is checked for NaN/Inf, and a model's non-zero `stat` undoes the step.
-!> First-same-as-last: the force at the end of a step stays valid and is reused by the
-!> next step when q was not moved in between (checked bitwise against the q it was
-!> computed at).
-!>
-!> Resumable form: a model whose evaluation sets `stat = KERNEL_SUSPEND` stops the kernel
-!> in the middle of the step (nothing undone); `ks%req` says which force the caller must put
-!> into its slot, and the next call of `fsym_kernel_run` resumes the step at that stage.
+!> The one splitting kernel: a loop over steps with the loop over the stage table inside,
+!> calling the force model directly; it knows no model. The modern integrator, the F77 face
+!> (EXTERNAL routines in a small model type), reverse communication and the C face run it.
+!> State: `kernel_state_t` (`fsym_kernel_state`) with a caller-owned work array
+!> `w(d, n, nslot)`. A step never allocates and does no I/O; it completes or leaves q, v
+!> (and the compensation terms) bitwise as on entry: every force and new state is checked
+!> for NaN/Inf, a model's non-zero `stat` undoes it. The end-of-step force is reused when q
+!> is bitwise unchanged (first-same-as-last). Resumable form: a model's evaluation setting
+!> `stat = KERNEL_SUSPEND` suspends the step; `ks%req` names the force the caller puts into
+!> its slot, and the next `fsym_kernel_run` resumes at that stage.
 module fsym_kernel
     use fsym_kinds, only: wp, ik
     use fsym_status
     use fsym_scheme, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use fsym_force, only: force_model_t, recorder_t, EVAL_FORCE, EVAL_GRADIENT, &
-                          EVAL_EXTRAPOLATED, fsym_all_finite
+                          EVAL_EXTRAPOLATED
     use fsym_kernel_state, only: kernel_state_t, KERNEL_SUSPEND, REQ_NONE, REQ_FORCE, &
                                  REQ_GRADIENT, REQ_FORCE_SHIFTED
     implicit none
@@ -28,8 +22,8 @@ module fsym_kernel
 
     public :: kernel_state_t, KERNEL_SUSPEND, REQ_NONE, REQ_FORCE, REQ_GRADIENT
     public :: REQ_FORCE_SHIFTED
-
     public :: fsym_kernel_layout, fsym_kernel_run, fsym_kernel_abort, fsym_kernel_invalidate
+    public :: fsym_all_finite
 
 contains
 
@@ -54,6 +48,28 @@ contains
             ks%ivc0 = ks%nslot + 4; ks%nslot = ks%nslot + 4
         end if
     end subroutine fsym_kernel_layout
+
+    !> True when all m values are finite: one sum in 16 interleaved partial sums (it
+    !> vectorises), an element-wise look only when the sum is not finite.
+    pure logical function fsym_all_finite(m, x)
+        integer, intent(in) :: m         !! number of values
+        real(wp), intent(in) :: x(m)     !! values
+        real(wp) :: acc(16), s
+        integer :: i, mb
+        mb = m - mod(m, 16); s = 0.0_wp
+        if (mb > 0) then
+            acc = x(1:16)
+            do i = 17, mb, 16
+                acc = acc + x(i:i + 15)
+            end do
+            s = sum(acc)
+        end if
+        do i = mb + 1, m
+            s = s + x(i)
+        end do
+        fsym_all_finite = abs(s) <= huge(s)
+        if (.not. fsym_all_finite) fsym_all_finite = all(ieee_is_finite(x))
+    end function fsym_all_finite
 
     !> Forget every cached force (after changing the model's parameters between steps).
     pure subroutine fsym_kernel_invalidate(ks)
@@ -121,9 +137,10 @@ contains
                 if (.not. accepted(ks%req)) return
                 ks%active = .false.; ks%req = REQ_NONE
             else
-                w(:, :, ks%iq0) = q; w(:, :, ks%iv0) = v
+                call copy(q, w(:, :, ks%iq0)); call copy(v, w(:, :, ks%iv0))
                 if (ks%comp) then
-                    w(:, :, ks%iqc0) = w(:, :, ks%iqc); w(:, :, ks%ivc0) = w(:, :, ks%ivc)
+                    call copy(w(:, :, ks%iqc), w(:, :, ks%iqc0))
+                    call copy(w(:, :, ks%ivc), w(:, :, ks%ivc0))
                 end if
                 ks%h = hs; ks%pc = 1
             end if
@@ -236,6 +253,12 @@ contains
             call fsym_kernel_abort(ks, q, v, w)
             stat = code
         end subroutine fail
+
+        pure subroutine copy(x, y)
+            real(wp), intent(in) :: x(m)
+            real(wp), intent(out) :: y(m)
+            y = x
+        end subroutine copy
 
         !> x <- x + s y, Kahan-compensated in e when `ks%comp`.
         subroutine update(x, e, s, y)

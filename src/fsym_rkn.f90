@@ -7,8 +7,9 @@
 module fsym_rkn
     use fsym_kinds, only: wp, ik
     use fsym_status
-    use fsym_force, only: force_model_t, recorder_t, EVAL_FORCE, fsym_all_finite
+    use fsym_force, only: force_model_t, recorder_t, EVAL_FORCE
     use fsym_stepper, only: stepper_t
+    use fsym_kernel, only: fsym_all_finite
     implicit none
     private
 
