@@ -6,6 +6,7 @@
 # run, and it OK. The CTest name is PREFIX<suite>.<test>[<parameter>]: pFUnit's name of the
 # case (test_<suite>_suite.test_<test>[<parameter>]) without "test_" and "_suite".
 # Cases whose name contains "bitwise" also get the label `bitwise`.
+# DATA (optional) is the folder of the tests' reference data, passed as FSYM_TEST_DATA.
 foreach(var EXE OUT PREFIX LABELS)
     if(NOT DEFINED ${var})
         message(FATAL_ERROR "fsym_test_cases.cmake: ${var} not set")
@@ -45,7 +46,7 @@ foreach(name IN LISTS names)
     string(APPEND script
         "add_test([==[${test}]==] \"${EXE}\")\n"
         "set_tests_properties([==[${test}]==] PROPERTIES\n"
-        "    ENVIRONMENT [==[FSYM_TEST_CASE=${name}]==]\n"
+        "    ENVIRONMENT [==[FSYM_TEST_CASE=${name};FSYM_TEST_DATA=${DATA}]==]\n"
         "    PASS_REGULAR_EXPRESSION \"OK[ \\n]*\\\\(1 test\\\\)\" LABELS \"${labels}\")\n")
 endforeach()
 file(WRITE "${OUT}" "${script}")
