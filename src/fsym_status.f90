@@ -45,7 +45,15 @@ module fsym_status
         !! Reverse communication was resumed out of order.
     integer, parameter, public :: FSYM_ERR_LAPACK = 18
         !! A LAPACK routine returned a non-zero info.
-    integer, parameter, public :: FSYM_ERR_LAST = 18
+    integer, parameter, public :: FSYM_ERR_BAD_ARGUMENT = 19
+        !! An argument is invalid: a step count <= 0, a NULL pointer from C, a label too long.
+    integer, parameter, public :: FSYM_ERR_STEP_TOO_LARGE = 20
+        !! The step-size guard refused a step: h omega beyond the method's stability limit.
+    integer, parameter, public :: FSYM_ERR_CHECKPOINT = 21
+        !! A checkpoint is corrupt, of another version, or does not fit this integrator.
+    integer, parameter, public :: FSYM_ERR_CONVENTION = 22
+        !! The F77 caller's integers are not default 4-byte integers (see FSYMCV).
+    integer, parameter, public :: FSYM_ERR_LAST = 22
         !! Largest status code in use.
 
     public :: fsym_status_message, fsym_report, fsym_pass, fsym_int_text
@@ -81,6 +89,10 @@ contains
         case (FSYM_ERR_NO_POTENTIAL);        msg = 'force model provides no potential'
         case (FSYM_ERR_BAD_REQUEST);         msg = 'reverse communication resumed out of order'
         case (FSYM_ERR_LAPACK);              msg = 'LAPACK routine failed'
+        case (FSYM_ERR_BAD_ARGUMENT);        msg = 'invalid argument'
+        case (FSYM_ERR_STEP_TOO_LARGE);      msg = 'step too large for this orbit (guard)'
+        case (FSYM_ERR_CHECKPOINT);          msg = 'checkpoint does not fit'
+        case (FSYM_ERR_CONVENTION);          msg = 'caller integers are not 4-byte integers'
         case default;                        msg = 'unknown status code'
         end select
     end function fsym_status_message

@@ -223,7 +223,7 @@ contains
                    all(iw(1:4) == [11, 12, 13, 14]), 'FSYMST with LIW = 3 wrote into IW')
         call FSYMIN(3, 3, nb, rw, lrw, iw, liw, info)
         call FSYMST(3, nb + 1, x, y, hstep, 1, accel, grad, rw, lrw, iw, liw, info)
-        call check(err, info == FSYM_ERR_NOT_INITIALIZED, 'FSYMST with another N')
+        call check(err, info == FSYM_ERR_SHAPE, 'FSYMST with another N')
         ! resuming with a request that was not made
         ireq = 2
         call FSYMRC(3, nb, x, y, hstep, rw, lrw, iw, liw, ireq, ipnt, info)
@@ -271,39 +271,42 @@ contains
         real(wp) :: q(3, nb), v(3, nb)
         integer(c_int), target :: calls
         integer(ik) :: nf, ng
-        integer(c_long_long) :: cnf, cng
-        type(c_ptr) :: h
+        integer(c_long_long), target :: cnf, cng
+        type(c_ptr), target :: h
         integer :: k, st
-        character(kind=c_char, len=8) :: name
+        character(kind=c_char, len=16), target :: name
         call make_system()
         do k = 1, size(methods)
             call modern(trim(methods(k)), q, v, nf, ng, st)
             name = trim(methods(k))//c_null_char
             calls = 0
-            st = fsym_c_create(name, 3_c_int, int(nb, c_int), c_funloc(c_accel), &
-                               c_funloc(c_grad), c_loc(calls), h)
+            st = fsym_c_create(c_loc(name), 3_c_int, int(nb, c_int), c_funloc(c_accel), &
+                               c_funloc(c_grad), c_loc(calls), c_loc(h))
             call check(err, st == 0, 'fsym_create '//trim(methods(k)))
             if (st /= 0) return
             x = x0; y = v0
             st = fsym_c_step(h, c_loc(x), c_loc(y), real(hstep, c_double), int(nsteps, c_int))
-            st = st + fsym_c_counts(h, cnf, cng)
+            st = st + fsym_c_counts(h, c_loc(cnf), c_loc(cng))
             call fsym_c_destroy(h)
             call check(err, st == 0 .and. all(x == q) .and. all(y == v), &
                        'C API differs: '//trim(methods(k)))
             call check(err, cnf == nf .and. cng == ng .and. calls == nf, 'C API counts')
         end do
         ! no gradient callback: A refused with a status, A' fine
-        st = fsym_c_create('A'//c_null_char, 3_c_int, int(nb, c_int), c_funloc(c_accel), &
-                           c_null_funptr, c_null_ptr, h)
+        name = 'A'//c_null_char
+        st = fsym_c_create(c_loc(name), 3_c_int, int(nb, c_int), c_funloc(c_accel), &
+                           c_null_funptr, c_null_ptr, c_loc(h))
         call check(err, st == FSYM_ERR_NO_GRADIENT .and. .not. c_associated(h), 'A without grad')
-        st = fsym_c_create('nonsense'//c_null_char, 3_c_int, int(nb, c_int), &
-                           c_funloc(c_accel), c_null_funptr, c_null_ptr, h)
+        name = 'nonsense'//c_null_char
+        st = fsym_c_create(c_loc(name), 3_c_int, int(nb, c_int), &
+                           c_funloc(c_accel), c_null_funptr, c_null_ptr, c_loc(h))
         call check(err, st == FSYM_ERR_UNKNOWN_METHOD, 'unknown name')
         st = fsym_c_step(c_null_ptr, c_loc(x), c_loc(y), 1.0_c_double, 1_c_int)
         call check(err, st == FSYM_ERR_NOT_INITIALIZED, 'NULL handle')
         ! a callback that reports failure: status FSYM_ERR_MODEL, state unchanged
-        st = fsym_c_create('FR'//c_null_char, 2_c_int, int(nb, c_int), c_funloc(c_accel), &
-                           c_null_funptr, c_loc(calls), h)
+        name = 'FR'//c_null_char
+        st = fsym_c_create(c_loc(name), 2_c_int, int(nb, c_int), c_funloc(c_accel), &
+                           c_null_funptr, c_loc(calls), c_loc(h))
         x = x0; y = v0
         st = st + fsym_c_step(h, c_loc(x), c_loc(y), 1.0_c_double, 3_c_int)
         call fsym_c_destroy(h)
