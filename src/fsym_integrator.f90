@@ -153,6 +153,11 @@ contains
         integer :: st
         logical :: stop
         call self%note_stop(.false.)
+        if (nsteps < 1) then
+            call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'run: nsteps = '//fsym_int_text(nsteps)// &
+                             ' (must be >= 1)', stat, errmsg)
+            return
+        end if
         if (.not. present(observer)) then
             call advance(self, model, q, v, h, nsteps, ndone, stat, errmsg, recorder)
             return
@@ -230,6 +235,12 @@ contains
         if (at_begin) then
             call fsym_report(st, 'method '//self%sc%name//', step '// &
                              fsym_int_text(self%steps() + 1), stat, errmsg)
+        else if (st == FSYM_ERR_NONFINITE_STATE) then
+            call fsym_report(st, 'method '//self%sc%name//', step '// &
+                             fsym_int_text(self%steps() + 1)//', stage '// &
+                             fsym_int_text(self%ks%pc)//': the step drove the state to '// &
+                             'NaN/Inf (step too large for this state?); state restored', &
+                             stat, errmsg)
         else
             call fsym_report(st, 'method '//self%sc%name//', step '// &
                              fsym_int_text(self%steps() + 1)//', stage '// &

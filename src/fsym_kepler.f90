@@ -4,6 +4,7 @@
 !> paper. Scalar physics is pure; `kepler_model_t` is the force model for `n` independent
 !> bodies about a fixed centre (columns of q).
 module fsym_kepler
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use fsym_kinds, only: wp
     use fsym_status
     use fsym_force, only: force_model_t
@@ -187,13 +188,22 @@ contains
 
     !> A planar orbit of eccentricity e and semi-major axis 1 (mu = 1) started at pericentre
     !> on the x axis: q = (1-e, 0), v = (0, sqrt((1+e)/(1-e))) (Hairer-Lubich-Wanner).
-    pure subroutine kepler_elliptic_orbit(e, q, v, period)
+    !> For e outside [0, 1) there is no such ellipse: `stat` = FSYM_ERR_NOT_ELLIPTIC and
+    !> q = v = NaN (so that an integrator refuses the state if `stat` is not looked at).
+    pure subroutine kepler_elliptic_orbit(e, q, v, period, stat)
         real(wp), intent(in) :: e                 !! eccentricity, 0 <= e < 1
         real(wp), intent(out) :: q(2), v(2)       !! initial state
         real(wp), intent(out), optional :: period !! its period (2 pi)
+        integer, intent(out), optional :: stat    !! FSYM_SUCCESS or FSYM_ERR_NOT_ELLIPTIC
+        if (present(stat)) stat = FSYM_SUCCESS
+        if (present(period)) period = 2.0_wp * FSYM_PI
+        if (.not. (e >= 0.0_wp .and. e < 1.0_wp)) then
+            if (present(stat)) stat = FSYM_ERR_NOT_ELLIPTIC
+            q = ieee_value(e, ieee_quiet_nan); v = q
+            return
+        end if
         q = [1.0_wp - e, 0.0_wp]
         v = [0.0_wp, sqrt((1.0_wp + e) / (1.0_wp - e))]
-        if (present(period)) period = 2.0_wp * FSYM_PI
     end subroutine kepler_elliptic_orbit
 
     pure real(wp) function opt_mu(mu)

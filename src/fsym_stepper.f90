@@ -120,6 +120,11 @@ contains
         ke = 1
         if (present(every)) ke = max(1, every)
         self%stopped = .false.
+        if (nsteps < 1) then
+            call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'run: nsteps = '//fsym_int_text(nsteps)// &
+                             ' (must be >= 1)', stat, errmsg)
+            return
+        end if
         do k = 1, nsteps
             call self%step(model, q, v, h, st, msg, recorder)
             if (st /= FSYM_SUCCESS) exit
