@@ -77,6 +77,17 @@ int fsym_last_message(const fsym_integrator *handle, char *buf, int len);
  * coupling) between steps. */
 int fsym_reset_cache(fsym_integrator *handle);
 
+/* Checkpoint and restart: the complete state (q, v, clock, counters, method, cached forces,
+ * compensation terms) as one array of doubles with a version tag, the same format on every
+ * face. A run resumed with fsym_checkpoint_load (on an integrator created for the same
+ * method and arrays, with the callbacks' data in the same state) is bitwise identical to an
+ * uninterrupted one. Errors: FSYM_ERR_CHECKPOINT (corrupt, other version/method/shape). */
+int fsym_checkpoint_length(const fsym_integrator *handle, long long *len);
+int fsym_checkpoint_save(fsym_integrator *handle, const double *q, const double *v,
+                         double *ck, long long len);
+int fsym_checkpoint_load(fsym_integrator *handle, double *q, double *v, const double *ck,
+                         long long len);
+
 /* Force and gradient evaluations so far (a NULL pointer is skipped). */
 int fsym_counts(const fsym_integrator *handle, long long *nforce, long long *ngrad);
 

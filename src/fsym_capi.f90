@@ -19,6 +19,7 @@ module fsym_capi
 
     public :: fsym_c_create, fsym_c_step, fsym_c_counts, fsym_c_destroy, fsym_c_message
     public :: fsym_c_steps_done, fsym_c_last_message, fsym_c_reset_cache
+    public :: fsym_c_checkpoint_length, fsym_c_checkpoint_save, fsym_c_checkpoint_load
 
     !> Longest method label read from C (longer ones are refused, never cut).
     integer, parameter, public :: FSYM_C_NAME_MAX = 256
@@ -234,6 +235,74 @@ contains
         call p%it%reset_cache()
         stat = FSYM_SUCCESS
     end function fsym_c_reset_cache
+
+    !> `int fsym_checkpoint_length(const fsym_integrator *handle, long long *len)`: length of
+    !> the checkpoint array (doubles).
+    integer(c_int) function fsym_c_checkpoint_length(handle, length) &
+        bind(C, name='fsym_checkpoint_length') result(stat)
+        type(c_ptr), value :: handle          !! integrator
+        type(c_ptr), value :: length          !! long long *: the length
+        type(c_handle_t), pointer :: p
+        integer(c_long_long), pointer :: x
+        stat = FSYM_ERR_NOT_INITIALIZED
+        if (.not. c_associated(handle)) return
+        call c_f_pointer(handle, p)
+        stat = FSYM_ERR_BAD_ARGUMENT
+        if (.not. c_associated(length)) return
+        call c_f_pointer(length, x)
+        x = int(p%it%checkpoint_length(), c_long_long)
+        stat = FSYM_SUCCESS
+    end function fsym_c_checkpoint_length
+
+    !> `int fsym_checkpoint_save(fsym_integrator *handle, const double *q, const double *v,
+    !> double *ck, long long len)`: the complete state into ck[len] (see the modern
+    !> `save_checkpoint`; the same format on every face).
+    integer(c_int) function fsym_c_checkpoint_save(handle, q, v, ck, length) &
+        bind(C, name='fsym_checkpoint_save') result(stat)
+        type(c_ptr), value :: handle          !! integrator
+        type(c_ptr), value :: q, v            !! state: double[n][d]
+        type(c_ptr), value :: ck              !! the checkpoint: double[len]
+        integer(c_long_long), value :: length !! its length
+        type(c_handle_t), pointer :: p
+        real(wp), pointer, contiguous :: qf(:, :), vf(:, :), c(:)
+        integer :: st
+        stat = FSYM_ERR_NOT_INITIALIZED
+        if (.not. c_associated(handle)) return
+        call c_f_pointer(handle, p)
+        stat = FSYM_ERR_BAD_ARGUMENT
+        if (.not. (c_associated(q) .and. c_associated(v) .and. c_associated(ck)) .or. &
+            length < 0) return
+        call c_f_pointer(q, qf, [p%d, p%n])
+        call c_f_pointer(v, vf, [p%d, p%n])
+        call c_f_pointer(ck, c, [length])
+        call p%it%save_checkpoint(qf, vf, c, st, p%msg)
+        stat = int(st, c_int)
+    end function fsym_c_checkpoint_save
+
+    !> `int fsym_checkpoint_load(fsym_integrator *handle, double *q, double *v,
+    !> const double *ck, long long len)`: resume from a checkpoint of the same method on the
+    !> same arrays; bitwise as if never interrupted. On error nothing changes.
+    integer(c_int) function fsym_c_checkpoint_load(handle, q, v, ck, length) &
+        bind(C, name='fsym_checkpoint_load') result(stat)
+        type(c_ptr), value :: handle          !! integrator
+        type(c_ptr), value :: q, v            !! state: double[n][d]
+        type(c_ptr), value :: ck              !! the checkpoint: double[len]
+        integer(c_long_long), value :: length !! its length
+        type(c_handle_t), pointer :: p
+        real(wp), pointer, contiguous :: qf(:, :), vf(:, :), c(:)
+        integer :: st
+        stat = FSYM_ERR_NOT_INITIALIZED
+        if (.not. c_associated(handle)) return
+        call c_f_pointer(handle, p)
+        stat = FSYM_ERR_BAD_ARGUMENT
+        if (.not. (c_associated(q) .and. c_associated(v) .and. c_associated(ck)) .or. &
+            length < 0) return
+        call c_f_pointer(q, qf, [p%d, p%n])
+        call c_f_pointer(v, vf, [p%d, p%n])
+        call c_f_pointer(ck, c, [length])
+        call p%it%load_checkpoint(qf, vf, c, st, p%msg)
+        stat = int(st, c_int)
+    end function fsym_c_checkpoint_load
 
     !> Copy `text` into the C buffer `buf` of `buflen` bytes, cut and NUL-terminated.
     subroutine copy_text(text, buf, buflen)

@@ -8,6 +8,8 @@ module fsym_integrator
     use fsym_stepper, only: stepper_t, observer_t
     use fsym_kernel, only: kernel_state_t, fsym_kernel_layout, fsym_kernel_run, &
                            fsym_kernel_invalidate
+    use fsym_checkpoint, only: ckpt_clock_t, fsym_checkpoint_length, fsym_checkpoint_pack, &
+                               fsym_checkpoint_unpack
     implicit none
     private
 
@@ -32,6 +34,12 @@ module fsym_integrator
         procedure :: scheme => integrator_scheme        !! the scheme in use
         procedure :: reset_cache => integrator_reset_cache  !! forget the cached end-of-step force
         procedure :: work_size => integrator_work_size  !! reals of workspace held
+        procedure :: checkpoint_length => integrator_checkpoint_length
+            !! length of the flat checkpoint array
+        procedure :: save_checkpoint => integrator_save_checkpoint
+            !! the complete state into a flat array (see `fsym_checkpoint`)
+        procedure :: load_checkpoint => integrator_load_checkpoint
+            !! resume from a flat array: bitwise as if never interrupted
     end type integrator_t
 
 contains
@@ -279,6 +287,81 @@ contains
         if (allocated(self%w)) m = size(self%w, kind=ik)
         integrator_work_size = m
     end function integrator_work_size
+
+    !> Length of the checkpoint array of this integrator (0 before init).
+    pure integer(ik) function integrator_checkpoint_length(self) result(m)
+        class(integrator_t), intent(in) :: self  !! the integrator
+        m = 0
+        if (self%ready) m = fsym_checkpoint_length(self%sc%nop, self%ks%d, self%ks%n, &
+                                                   self%ks%nslot)
+    end function integrator_checkpoint_length
+
+    !> Write the complete state (q, v, clock, counters, method, cached forces, compensation
+    !> terms) into `ck`, at least `checkpoint_length()` long. Between steps only.
+    subroutine integrator_save_checkpoint(self, q, v, ck, stat, errmsg)
+        class(integrator_t), intent(inout) :: self            !! the integrator
+        real(wp), intent(in), contiguous :: q(:, :)           !! positions (d, n)
+        real(wp), intent(in), contiguous :: v(:, :)           !! velocities (d, n)
+        real(wp), intent(out) :: ck(:)                        !! the checkpoint
+        integer, intent(out), optional :: stat                !! status code
+        character(len=*), intent(inout), optional :: errmsg   !! message on error
+        type(ckpt_clock_t) :: clock
+        if (.not. checkpoint_fits(self, q, v, size(ck, kind=ik), stat, errmsg)) return
+        call self%clock_state(clock%t_base, clock%h_now, clock%k_since, clock%steps, 0)
+        call fsym_checkpoint_pack(self%sc%op, self%sc%c, self%sc%u, self%ks, clock, q, v, &
+                                  self%w, ck)
+        if (present(stat)) stat = FSYM_SUCCESS
+    end subroutine integrator_save_checkpoint
+
+    !> Resume from a checkpoint written by `save_checkpoint` (or by another face) of the same
+    !> method on the same arrays: q, v, the clock, the counters and the kernel state are
+    !> restored, so the run goes on bitwise as if never interrupted. The integrator must be
+    !> set up (`init`) for the same method, shape and compensation; the force model must be
+    !> in the same state as when the checkpoint was written. On error nothing changes.
+    subroutine integrator_load_checkpoint(self, q, v, ck, stat, errmsg)
+        class(integrator_t), intent(inout) :: self            !! the integrator
+        real(wp), intent(inout), contiguous :: q(:, :)        !! positions (d, n)
+        real(wp), intent(inout), contiguous :: v(:, :)        !! velocities (d, n)
+        real(wp), intent(in) :: ck(:)                         !! the checkpoint
+        integer, intent(out), optional :: stat                !! status code
+        character(len=*), intent(inout), optional :: errmsg   !! message on error
+        type(ckpt_clock_t) :: clock
+        integer :: st
+        integer(ik) :: nf, ng
+        character(len=128) :: msg
+        if (.not. checkpoint_fits(self, q, v, size(ck, kind=ik), stat, errmsg)) return
+        call fsym_checkpoint_unpack(ck, self%sc%op, self%sc%c, self%sc%u, self%ks, clock, q, &
+                                    v, self%w, st, msg)
+        if (st /= FSYM_SUCCESS) then
+            call fsym_report(st, msg, stat, errmsg); return
+        end if
+        call self%clock_state(clock%t_base, clock%h_now, clock%k_since, clock%steps, 1)
+        nf = self%ks%nf; ng = self%ks%ng
+        call self%counters(nf, ng, 1)
+        if (present(stat)) stat = FSYM_SUCCESS
+    end subroutine integrator_load_checkpoint
+
+    !> The checks a checkpoint call makes: set up, shapes, length of ck.
+    logical function checkpoint_fits(self, q, v, nck, stat, errmsg) result(ok)
+        class(integrator_t), intent(in) :: self
+        real(wp), intent(in) :: q(:, :), v(:, :)
+        integer(ik), intent(in) :: nck
+        integer, intent(out), optional :: stat
+        character(len=*), intent(inout), optional :: errmsg
+        ok = .false.
+        if (.not. self%ready) then
+            call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'checkpoint before init', stat, errmsg)
+        else if (size(q, 1) /= self%ks%d .or. size(q, 2) /= self%ks%n .or. &
+                 size(v, 1) /= self%ks%d .or. size(v, 2) /= self%ks%n) then
+            call fsym_report(FSYM_ERR_SHAPE, shape_text(self%ks%d, self%ks%n, q, v), stat, &
+                             errmsg)
+        else if (nck < self%checkpoint_length()) then
+            call fsym_report(FSYM_ERR_CHECKPOINT, 'checkpoint array shorter than '// &
+                             fsym_int_text(self%checkpoint_length()), stat, errmsg)
+        else
+            ok = .true.
+        end if
+    end function checkpoint_fits
 
     function shape_text(d, n, q, v) result(s)
         integer, intent(in) :: d, n

@@ -362,6 +362,106 @@ subroutine FSYMCV(ICHK, X)
     end if
 end subroutine FSYMCV
 
+!> Length LCK of the checkpoint array of the work arrays set up by FSYMIN/FSYMIL for X(ND,N)
+!> (INFO as FSYMST; FSYM_ERR_WORK_SIZE when the length does not fit a default integer).
+subroutine FSYMCL(ND, N, RW, LRW, IW, LIW, LCK, INFO)
+    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_WORK_SIZE
+    use fsym_kinds, only: wp, ik
+    use fsym_checkpoint, only: fsym_checkpoint_length
+    use fsym_legacy_work, only: legacy_check
+    implicit none
+    integer, intent(in) :: ND, N                !! dimensions, bodies
+    integer, intent(in) :: LRW, LIW             !! lengths of RW and IW
+    real(wp), intent(in) :: RW(LRW)             !! work array set up by FSYMIN
+    integer, intent(in) :: IW(LIW)              !! work array set up by FSYMIN
+    integer, intent(out) :: LCK                 !! checkpoint length
+    integer, intent(out) :: INFO                !! status
+    integer(ik) :: m
+    LCK = 0
+    INFO = legacy_check(ND, N, LRW, LIW, IW)
+    if (INFO /= FSYM_SUCCESS) return
+    m = fsym_checkpoint_length(IW(4), ND, N, IW(5))
+    if (m > huge(LCK)) then
+        INFO = FSYM_ERR_WORK_SIZE; return
+    end if
+    LCK = int(m)
+end subroutine FSYMCL
+
+!> Checkpoint: the complete state (X, V, the method, the cached forces, the evaluation counts)
+!> into CK(LCK), in the format of every face (`fsym_checkpoint`): a run restored from it by
+!> FSYMCR (or by the modern or C face) goes on bitwise as if never interrupted. Not while a
+!> reverse-communication step is in progress (INFO = 17). The F77 face keeps no clock: the
+!> time and step count in CK are 0.
+subroutine FSYMCK(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
+    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_REQUEST, FSYM_ERR_CHECKPOINT
+    use fsym_kinds, only: wp, ik
+    use fsym_kernel, only: kernel_state_t
+    use fsym_checkpoint, only: ckpt_clock_t, fsym_checkpoint_length, fsym_checkpoint_pack
+    use fsym_legacy_work, only: legacy_check, legacy_load, LEGACY_KO, LEGACY_KC
+    implicit none
+    integer, intent(in) :: ND, N                !! dimensions, bodies
+    real(wp), intent(in) :: X(ND, N)            !! positions
+    real(wp), intent(in) :: V(ND, N)            !! velocities
+    integer, intent(in) :: LRW, LIW             !! lengths of RW and IW
+    real(wp), intent(in) :: RW(LRW)             !! work array set up by FSYMIN
+    integer, intent(in) :: IW(LIW)              !! work array set up by FSYMIN
+    integer, intent(in) :: LCK                  !! length of CK
+    real(wp), intent(out) :: CK(LCK)            !! the checkpoint
+    integer, intent(out) :: INFO                !! status
+    type(kernel_state_t) :: ks
+    type(ckpt_clock_t) :: clock
+    integer :: nop, kw
+    INFO = legacy_check(ND, N, LRW, LIW, IW)
+    if (INFO /= FSYM_SUCCESS) return
+    nop = IW(4); kw = LEGACY_KC + 2 * nop
+    if (LCK < fsym_checkpoint_length(nop, ND, N, IW(5))) then
+        INFO = FSYM_ERR_CHECKPOINT; return
+    end if
+    call legacy_load(IW(8:LEGACY_KO - 1), RW(1:4), ks)
+    if (ks%active) then
+        INFO = FSYM_ERR_BAD_REQUEST; return
+    end if
+    call fsym_checkpoint_pack(IW(LEGACY_KO:LEGACY_KO + nop - 1), RW(LEGACY_KC:kw - nop - 1), &
+                              RW(kw - nop:kw - 1), ks, clock, X, V, &
+                              RW(kw:kw - 1 + ND * N * ks%nslot), CK)
+end subroutine FSYMCK
+
+!> Restart: restore X, V and the work arrays from a checkpoint CK written by FSYMCK (or by
+!> the modern or C face, uncompensated) for the same method on X(ND,N); RW and IW must have
+!> been set up by FSYMIN/FSYMIL for that method. INFO = 21 (FSYM_ERR_CHECKPOINT) when CK is
+!> corrupt, of another version, method, shape or a compensated run; nothing changes then.
+subroutine FSYMCR(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
+    use fsym_status, only: FSYM_SUCCESS
+    use fsym_kinds, only: wp, ik
+    use fsym_kernel, only: kernel_state_t
+    use fsym_checkpoint, only: ckpt_clock_t, fsym_checkpoint_unpack
+    use fsym_legacy_work, only: legacy_check, legacy_load, legacy_store, LEGACY_KO, LEGACY_KC
+    implicit none
+    integer, intent(in) :: ND, N                !! dimensions, bodies
+    real(wp), intent(inout) :: X(ND, N)         !! positions
+    real(wp), intent(inout) :: V(ND, N)         !! velocities
+    integer, intent(in) :: LRW, LIW             !! lengths of RW and IW
+    real(wp), intent(inout) :: RW(LRW)          !! work array set up by FSYMIN
+    integer, intent(inout) :: IW(LIW)           !! work array set up by FSYMIN
+    integer, intent(in) :: LCK                  !! length of CK
+    real(wp), intent(in) :: CK(LCK)             !! the checkpoint
+    integer, intent(out) :: INFO                !! status
+    type(kernel_state_t) :: ks
+    type(ckpt_clock_t) :: clock
+    integer :: nop, kw
+    character(len=128) :: msg
+    INFO = legacy_check(ND, N, LRW, LIW, IW)
+    if (INFO /= FSYM_SUCCESS) return
+    nop = IW(4); kw = LEGACY_KC + 2 * nop
+    call legacy_load(IW(8:LEGACY_KO - 1), RW(1:4), ks)
+    call fsym_checkpoint_unpack(CK, IW(LEGACY_KO:LEGACY_KO + nop - 1), &
+                                RW(LEGACY_KC:kw - nop - 1), RW(kw - nop:kw - 1), ks, clock, &
+                                X, V, RW(kw:kw - 1 + ND * N * ks%nslot), INFO, msg)
+    if (INFO /= FSYM_SUCCESS) return
+    call legacy_store(ks, IW(8:LEGACY_KO - 1), RW(1:4))
+    IW(7) = 0
+end subroutine FSYMCR
+
 !> Text of a status code INFO, blank-padded or cut to the length of MSG.
 subroutine FSYMMS(INFO, MSG)
     use fsym_status, only: fsym_status_message

@@ -7,7 +7,7 @@ module fsym_legacy_api
     private
 
     public :: FSYMID, FSYMWK, FSYMIN, FSYMST, FSYMRC, FSYMNF, FSYMMS, FSYMPK, FSYMUP
-    public :: FSYMWL, FSYMIL, FSYMG0, FSYMNL, FSYMRS, FSYMCV
+    public :: FSYMWL, FSYMIL, FSYMG0, FSYMNL, FSYMRS, FSYMCV, FSYMCL, FSYMCK, FSYMCR
     public :: fsym_legacy_accel, fsym_legacy_grad
 
     abstract interface
@@ -144,6 +144,37 @@ module fsym_legacy_api
             integer(int32), intent(inout) :: ICHK(*)      !! (1, 2) on entry; verdict
             real(wp), intent(in) :: X                     !! 1.5D0
         end subroutine FSYMCV
+        !> Checkpoint length.
+        subroutine FSYMCL(ND, N, RW, LRW, IW, LIW, LCK, INFO)
+            import :: wp
+            implicit none
+            integer, intent(in) :: ND, N, LRW, LIW        !! dimensions, bodies, lengths
+            real(wp), intent(in) :: RW(LRW)               !! real work array
+            integer, intent(in) :: IW(LIW)                !! integer work array
+            integer, intent(out) :: LCK, INFO             !! checkpoint length, status
+        end subroutine FSYMCL
+        !> Write a checkpoint.
+        subroutine FSYMCK(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
+            import :: wp
+            implicit none
+            integer, intent(in) :: ND, N, LRW, LIW, LCK   !! dimensions, bodies, lengths
+            real(wp), intent(in) :: X(ND, N), V(ND, N)    !! state
+            real(wp), intent(in) :: RW(LRW)               !! real work array
+            integer, intent(in) :: IW(LIW)                !! integer work array
+            real(wp), intent(out) :: CK(LCK)              !! the checkpoint
+            integer, intent(out) :: INFO                  !! status
+        end subroutine FSYMCK
+        !> Restore from a checkpoint.
+        subroutine FSYMCR(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
+            import :: wp
+            implicit none
+            integer, intent(in) :: ND, N, LRW, LIW, LCK   !! dimensions, bodies, lengths
+            real(wp), intent(inout) :: X(ND, N), V(ND, N) !! state
+            real(wp), intent(inout) :: RW(LRW)            !! real work array
+            integer, intent(inout) :: IW(LIW)             !! integer work array
+            real(wp), intent(in) :: CK(LCK)               !! the checkpoint
+            integer, intent(out) :: INFO                  !! status
+        end subroutine FSYMCR
         !> Pack XH, YH, ZH into X(3,N).
         subroutine FSYMPK(N, XH, YH, ZH, X)
             import :: wp
