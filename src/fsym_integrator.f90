@@ -7,7 +7,8 @@ module fsym_integrator
     use fsym_force, only: force_model_t, recorder_t
     use fsym_stepper, only: stepper_t, observer_t
     use fsym_kernel, only: kernel_state_t, fsym_kernel_layout, fsym_kernel_run, &
-                           fsym_kernel_invalidate
+                           fsym_kernel_invalidate, fsym_kernel_abort
+    use fsym_guard, only: guard_t, fsym_guard_setup, fsym_guard_check, fsym_guard_message
     use fsym_checkpoint, only: ckpt_clock_t, fsym_checkpoint_length, fsym_checkpoint_pack, &
                                fsym_checkpoint_unpack
     implicit none
@@ -21,6 +22,7 @@ module fsym_integrator
         type(kernel_state_t) :: ks           ! the kernel's state
         logical :: ready = .false.
         logical :: needs_g = .false.        ! the scheme has gradient kicks
+        type(guard_t) :: guard              ! the step-size guard (off by default)
     contains
         procedure :: init => integrator_init
             !! set up for a scheme, a model and arrays (d, n)
@@ -40,6 +42,8 @@ module fsym_integrator
             !! the complete state into a flat array (see `fsym_checkpoint`)
         procedure :: load_checkpoint => integrator_load_checkpoint
             !! resume from a flat array: bitwise as if never interrupted
+        procedure :: set_guard => integrator_set_guard
+            !! turn the step-size guard on or off
     end type integrator_t
 
 contains
@@ -222,16 +226,84 @@ contains
             end if
         end if
         step0 = self%steps()
-        call fsym_kernel_run(self%sc%op, self%sc%c, self%sc%u, model, self%ks, q, v, self%w, h, &
-                             nsteps, ndone, st, recorder, step0)
+        if (self%guard%on) then
+            call guarded_run(self, model, q, v, h, nsteps, ndone, st, recorder, step0)
+        else
+            call fsym_kernel_run(self%sc%op, self%sc%c, self%sc%u, model, self%ks, q, v, &
+                                 self%w, h, nsteps, ndone, st, recorder, step0)
+        end if
         nf = self%ks%nf; ng = self%ks%ng
         call self%counters(nf, ng, 1)
         call self%count_step(h, ndone)
-        if (st /= FSYM_SUCCESS) then
+        if (st == FSYM_ERR_STEP_TOO_LARGE) then
+            call fsym_report(st, fsym_guard_message(self%guard, self%sc%name, self%time(), &
+                             self%steps() + 1), stat, errmsg)
+            return
+        else if (st /= FSYM_SUCCESS) then
             call report_step_failure(self, st, self%ks%pc == 0, stat, errmsg); return
         end if
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine advance
+
+    !> The kernel step by step, each step checked by the guard (h omega <= limit) at its
+    !> start and at its end; a step that ends beyond the limit is undone (the kernel keeps
+    !> the state of the step's start), so a refused step leaves the state as it was.
+    subroutine guarded_run(self, model, q, v, h, nsteps, ndone, st, recorder, step0)
+        class(integrator_t), intent(inout) :: self
+        class(force_model_t), intent(inout) :: model
+        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)
+        real(wp), intent(in) :: h
+        integer(ik), intent(in) :: nsteps, step0
+        integer(ik), intent(out) :: ndone
+        integer, intent(out) :: st
+        class(recorder_t), intent(inout), optional :: recorder
+        integer(ik) :: i, nd
+        ndone = 0; st = FSYM_SUCCESS
+        do i = 1, nsteps
+            call fsym_guard_check(self%guard, model, q, h, st)
+            if (st /= FSYM_SUCCESS) exit
+            call fsym_kernel_run(self%sc%op, self%sc%c, self%sc%u, model, self%ks, q, v, &
+                                 self%w, h, 1_ik, nd, st, recorder, step0 + ndone)
+            if (st /= FSYM_SUCCESS) return
+            call fsym_guard_check(self%guard, model, q, h, st)
+            if (st /= FSYM_SUCCESS) then
+                self%ks%active = .true.        ! undo the step just taken
+                call fsym_kernel_abort(self%ks, q, v, self%w)
+                exit
+            end if
+            ndone = ndone + nd
+        end do
+        self%ks%pc = 0
+    end subroutine guarded_run
+
+    !> Turn the step-size guard on (`on`) or off. On, every step first asks the model for its
+    !> largest local frequency omega (`local_frequency`, e.g. omega^2 = 2 mu/r^3 for Kepler)
+    !> and refuses a step with |h| omega > fraction x*, x* being the end of the method's
+    !> stability interval on the harmonic oscillator (from its own coefficient table,
+    !> `fsym_stability_interval`): status FSYM_ERR_STEP_TOO_LARGE, a message with the time,
+    !> r, h omega and x*, and the state intact. `fraction` (default 1) tightens the limit.
+    !> A model without `local_frequency` cannot be guarded (FSYM_ERR_BAD_ARGUMENT).
+    subroutine integrator_set_guard(self, model, on, stat, errmsg, fraction)
+        class(integrator_t), intent(inout) :: self            !! the integrator
+        class(force_model_t), intent(in) :: model             !! the force model to be used
+        logical, intent(in) :: on                             !! guard on or off
+        integer, intent(out), optional :: stat                !! status code
+        character(len=*), intent(inout), optional :: errmsg   !! message on error
+        real(wp), intent(in), optional :: fraction            !! of x* (default 1)
+        integer :: st
+        character(len=128) :: msg
+        if (.not. self%ready) then
+            call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'set_guard before init', stat, errmsg)
+            return
+        end if
+        if (.not. on) then
+            self%guard%on = .false.
+            if (present(stat)) stat = FSYM_SUCCESS
+            return
+        end if
+        call fsym_guard_setup(self%guard, self%sc, model, st, msg, fraction)
+        call fsym_pass(st, msg, stat, errmsg)
+    end subroutine integrator_set_guard
 
     !> Report a failed step (rejected on entry when `at_begin`).
     subroutine report_step_failure(self, st, at_begin, stat, errmsg)

@@ -27,6 +27,8 @@ module fsym_kepler
         procedure :: has_gradient => kepler_model_has_gradient  !! true
         procedure :: potential => kepler_model_potential  !! sum of -mu/|q_j|
         procedure :: has_potential => kepler_model_has_potential  !! true
+        procedure :: local_frequency => kepler_model_frequency  !! max 2 mu / r^3 over bodies
+        procedure :: has_frequency => kepler_model_has_potential  !! true
     end type kepler_model_t
 
     public :: kepler_acceleration, kepler_gradient, kepler_potential, kepler_energy
@@ -340,5 +342,21 @@ contains
         class(kepler_model_t), intent(in) :: self  !! the model
         kepler_model_has_potential = .true.
     end function kepler_model_has_potential
+
+    !> Largest local frequency squared, 2 mu / r^3 over the bodies (the oscillation frequency
+    !> of a radial perturbation scale at distance r), and the smallest r.
+    subroutine kepler_model_frequency(self, q, omega2, r, stat)
+        class(kepler_model_t), intent(inout) :: self  !! the model
+        real(wp), intent(in), contiguous :: q(:, :)   !! positions (d, n)
+        real(wp), intent(out) :: omega2               !! largest 2 mu / r^3
+        real(wp), intent(out) :: r                    !! smallest distance to the centre
+        integer, intent(inout) :: stat                !! unchanged: never fails itself
+        integer :: j
+        r = huge(r)
+        do j = 1, size(q, 2)
+            r = min(r, sqrt(sum(q(:, j)**2)))
+        end do
+        omega2 = 2.0_wp * abs(self%mu) / r**3
+    end subroutine kepler_model_frequency
 
 end module fsym_kepler

@@ -214,8 +214,8 @@ end subroutine FSYMG0
 !> (X, V restored). Do not change X or V while a step is in progress. A call with another
 !> IREQ than the one returned (or IREQ /= 0 with no step in progress) is refused with
 !> IREQ = -1, INFO = 17, and the step in progress is abandoned: X and V are restored and
-!> the next call with IREQ = 0 starts a new step. INFO = 9, 7, 10 as for FSYMST. It runs the kernel of
-!> FSYMST stage by stage: the kernel suspends where FSYMST would call ACCEL or GRAD.
+!> the next call with IREQ = 0 starts a new step. INFO = 9, 7, 10 as for FSYMST. It runs the
+!> kernel of FSYMST stage by stage: the kernel suspends where FSYMST would call ACCEL or GRAD.
 subroutine FSYMRC(ND, N, X, V, H, RW, LRW, IW, LIW, IREQ, IPNT, INFO)
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_REQUEST
     use fsym_kinds, only: wp, ik
