@@ -56,7 +56,7 @@ module fsym_status
     integer, parameter, public :: FSYM_ERR_LAST = 22
         !! Largest status code in use.
 
-    public :: fsym_status_message, fsym_report, fsym_pass, fsym_int_text
+    public :: fsym_status_message, fsym_report, fsym_pass, fsym_int_text, fsym_copy_printable
 
     !> Decimal text of an integer (default kind or `ik`), for messages and labels.
     interface fsym_int_text
@@ -113,7 +113,7 @@ contains
         else
             text = fsym_status_message(code)
         end if
-        if (present(errmsg)) errmsg = text
+        if (present(errmsg)) call fsym_copy_printable(text, errmsg)
         if (.not. present(stat)) then
             write (error_unit, '(a)') 'forward-symplectic: '//text
             error stop 1
@@ -129,12 +129,24 @@ contains
         character(len=*), intent(inout), optional :: errmsg    !! receives `msg` on error
         if (present(stat)) stat = code
         if (code == FSYM_SUCCESS) return
-        if (present(errmsg)) errmsg = msg
+        if (present(errmsg)) call fsym_copy_printable(msg, errmsg)
         if (.not. present(stat)) then
             write (error_unit, '(a)') 'forward-symplectic: '//trim(msg)
             error stop 1
         end if
     end subroutine fsym_pass
+
+    !> Copy a message, every byte outside printable ASCII (a user's label may hold any)
+    !> replaced by '?', so that a message is always printable text.
+    pure subroutine fsym_copy_printable(text, out)
+        character(len=*), intent(in) :: text       !! the message
+        character(len=*), intent(inout) :: out     !! receives it, blank-padded or cut
+        integer :: k
+        out = text
+        do k = 1, min(len(text), len(out))
+            if (iachar(out(k:k)) < 32 .or. iachar(out(k:k)) > 126) out(k:k) = '?'
+        end do
+    end subroutine fsym_copy_printable
 
     !> Decimal text of a default integer.
     pure function int_text_default(k) result(s)
