@@ -104,6 +104,7 @@ contains
                                    s%ngrad, 0.0_wp)
         if (present(t0)) call self%set_time(t0)
         self%needs_g = s%needs_gradient()
+        self%guard%on = .false.             ! a new set-up starts unguarded
         self%ready = .true.
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine integrator_init
