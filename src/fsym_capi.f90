@@ -263,20 +263,7 @@ contains
         type(c_ptr), value :: q, v            !! state: double[n][d]
         type(c_ptr), value :: ck              !! the checkpoint: double[len]
         integer(c_long_long), value :: length !! its length
-        type(c_handle_t), pointer :: p
-        real(wp), pointer, contiguous :: qf(:, :), vf(:, :), c(:)
-        integer :: st
-        stat = FSYM_ERR_NOT_INITIALIZED
-        if (.not. c_associated(handle)) return
-        call c_f_pointer(handle, p)
-        stat = FSYM_ERR_BAD_ARGUMENT
-        if (.not. (c_associated(q) .and. c_associated(v) .and. c_associated(ck)) .or. &
-            length < 0) return
-        call c_f_pointer(q, qf, [p%d, p%n])
-        call c_f_pointer(v, vf, [p%d, p%n])
-        call c_f_pointer(ck, c, [length])
-        call p%it%save_checkpoint(qf, vf, c, st, p%msg)
-        stat = int(st, c_int)
+        stat = checkpoint_call(handle, q, v, ck, length, .true.)
     end function fsym_c_checkpoint_save
 
     !> `int fsym_checkpoint_load(fsym_integrator *handle, double *q, double *v,
@@ -288,6 +275,14 @@ contains
         type(c_ptr), value :: q, v            !! state: double[n][d]
         type(c_ptr), value :: ck              !! the checkpoint: double[len]
         integer(c_long_long), value :: length !! its length
+        stat = checkpoint_call(handle, q, v, ck, length, .false.)
+    end function fsym_c_checkpoint_load
+
+    !> Save (`save`) or load a checkpoint through a C handle, with the NULL checks.
+    integer(c_int) function checkpoint_call(handle, q, v, ck, length, save) result(stat)
+        type(c_ptr), intent(in) :: handle, q, v, ck
+        integer(c_long_long), intent(in) :: length
+        logical, intent(in) :: save
         type(c_handle_t), pointer :: p
         real(wp), pointer, contiguous :: qf(:, :), vf(:, :), c(:)
         integer :: st
@@ -300,9 +295,13 @@ contains
         call c_f_pointer(q, qf, [p%d, p%n])
         call c_f_pointer(v, vf, [p%d, p%n])
         call c_f_pointer(ck, c, [length])
-        call p%it%load_checkpoint(qf, vf, c, st, p%msg)
+        if (save) then
+            call p%it%save_checkpoint(qf, vf, c, st, p%msg)
+        else
+            call p%it%load_checkpoint(qf, vf, c, st, p%msg)
+        end if
         stat = int(st, c_int)
-    end function fsym_c_checkpoint_load
+    end function checkpoint_call
 
     !> Copy `text` into the C buffer `buf` of `buflen` bytes, cut and NUL-terminated.
     subroutine copy_text(text, buf, buflen)

@@ -88,7 +88,7 @@ contains
     subroutine force_no_gradient(self, q, a, g, stat)
         class(force_model_t), intent(inout) :: self  !! the model
         real(wp), intent(in), contiguous :: q(:, :)               !! positions (d, n)
-        real(wp), intent(in), contiguous :: a(:, :)               !! accelerations at q, already computed
+        real(wp), intent(in), contiguous :: a(:, :)   !! accelerations at q, already computed
         real(wp), intent(out), contiguous :: g(:, :)              !! gradient term (d, n)
         integer, intent(inout) :: stat                !! 0 on entry; non-zero = failure
         g = 0.0_wp

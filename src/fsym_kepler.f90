@@ -229,7 +229,7 @@ contains
     subroutine kepler_model_gradient(self, q, a, g, stat)
         class(kepler_model_t), intent(inout) :: self  !! the model
         real(wp), intent(in), contiguous :: q(:, :)                !! positions (d, n)
-        real(wp), intent(in), contiguous :: a(:, :)                !! accelerations at q (used: g = 4 a/r^3)
+        real(wp), intent(in), contiguous :: a(:, :)   !! accelerations at q (g = 4 a/r^3)
         real(wp), intent(out), contiguous :: g(:, :)               !! gradient term (d, n)
         integer, intent(inout) :: stat                 !! unchanged: never fails itself
         call kepler_field_gradient(size(q, 1), size(q, 2), self%mu, q, a, g)

@@ -136,7 +136,7 @@ contains
     !> FSYM_SUCCESS when they are fine. Lengths are compared in 64-bit arithmetic.
     pure integer function legacy_check(nd, n, lrw, liw, iw) result(info)
         integer, intent(in) :: nd, n, lrw, liw   !! dimensions and lengths given by the caller
-        integer, intent(in) :: iw(*)             !! integer work array (at least liw long)
+        integer, intent(in) :: iw(liw)           !! integer work array
         info = FSYM_ERR_NOT_INITIALIZED
         if (liw < 7) return
         if (iw(1) /= LEGACY_MAGIC .or. iw(4) < 1 .or. iw(5) < 1) return
