@@ -51,6 +51,7 @@ def main():
     ap.add_argument("--fuzz", required=True)
     ap.add_argument("--status", required=True)
     ap.add_argument("--guard", required=True)
+    ap.add_argument("--solar", default=None)
     ap.add_argument("--cases", required=True)
     ap.add_argument("--seed", required=True)
     ap.add_argument("--out", required=True)
@@ -120,6 +121,18 @@ def main():
     out.append("| across faces | modern checkpoint resumed by the F77 face | %s |" % verdict)
     out.append("| refused | bad tag, other version, truncated, corrupt flag, other method, "
                "compensated vs plain: FSYM_ERR_CHECKPOINT, state untouched | %s |\n" % verdict)
+
+    solar = []
+    if a.solar:
+        with open(a.solar, encoding="utf-8") as f:
+            solar = [line.strip() for line in f if line.startswith("[checkpoint]")]
+    out.append("`fsym-solar` (`test/checkpoint_solar.sh`): the outer solar system, every "
+               "method and step, run with `--checkpoint-every 3000`, killed with SIGKILL, "
+               "resumed with `--resume`; end states, energy errors and counts compared "
+               "bitwise with an uninterrupted run:\n")
+    for line in solar or ["[checkpoint] not run (fpm not found)"]:
+        out.append("- `%s`" % line)
+    out.append("")
 
     out.append("## The step-size guard on e = 0.9999\n")
     out.append("Kepler orbit of e = 0.9999 (a = 1, mu = 1) started at apocentre, one period "

@@ -55,7 +55,15 @@ run c_fuzz "$tmp/build/fuzz/fuzz_capi" "$cases" "$seed" "$report"
 run checkpoint "$tmp/build/test_checkpoint"
 run guard "$tmp/build/test_guard"
 "$tmp/build/reliability_guard" > "$tmp/guard.txt"
+: > "$tmp/solar.txt"
+if command -v fpm > /dev/null 2>&1; then    # fsym-solar (HDF5) killed and resumed
+    for delay in 0.4 1.0 2.0; do
+        if bash "$root/test/checkpoint_solar.sh" "" "$delay" >> "$tmp/solar.txt" 2>&1; then :
+        else rc=1; fi
+    done
+fi
 python3 "$root/scripts/reliability.py" --fuzz "$report" --status "$tmp/status.txt" \
+    --solar "$tmp/solar.txt" \
     --guard "$tmp/guard.txt" --cases "$cases" --seed "$seed" --out "$root/doc/reliability.md"
 echo "[reliability] wrote doc/reliability.md"
 exit $rc

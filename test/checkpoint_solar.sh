@@ -27,7 +27,10 @@ wait "$pid" 2>/dev/null || true
 "$exe" --resume "$tmp/ck.h5" --end-states "$tmp/resumed.txt" "$data" "$tmp/res.md" \
     "$tmp/res.h5" > "$tmp/resumed.log"
 if cmp -s "$tmp/full.txt" "$tmp/resumed.txt"; then
-    echo "[checkpoint] killed after ${delay}s and resumed: $(wc -l < "$tmp/full.txt") cases bitwise equal"
+    n=$(wc -l < "$tmp/full.txt")
+    echo "[checkpoint] killed after ${delay}s and resumed: $n cases bitwise equal"
 else
-    echo "[checkpoint] resumed run differs from the uninterrupted one"; diff "$tmp/full.txt" "$tmp/resumed.txt" | head; exit 1
+    echo "[checkpoint] resumed run differs from the uninterrupted one"
+    diff "$tmp/full.txt" "$tmp/resumed.txt" | head
+    exit 1
 fi
