@@ -3,7 +3,8 @@
 module fsym_integrator
     use fsym_kinds, only: wp, ik
     use fsym_status
-    use fsym_scheme, only: scheme_t, fsym_scheme_custom, fsym_scheme_by_name, fsym_op_name
+    use fsym_scheme, only: scheme_t, fsym_scheme_custom, fsym_scheme_by_name
+    use fsym_text, only: fsym_text_put, fsym_text_put_int
     use fsym_force, only: force_model_t, recorder_t
     use fsym_stepper, only: stepper_t, observer_t
     use fsym_kernel, only: kernel_state_t, fsym_kernel_layout, fsym_kernel_run, &
@@ -306,29 +307,37 @@ contains
         call fsym_pass(st, msg, stat, errmsg)
     end subroutine integrator_set_guard
 
-    !> Report a failed step (rejected on entry when `at_begin`).
+    !> Report a failed step (rejected on entry when `at_begin`). The message is built in a
+    !> fixed buffer without allocation (a failing step should not allocate to say why).
     subroutine report_step_failure(self, st, at_begin, stat, errmsg)
         class(integrator_t), intent(in) :: self
         integer, intent(in) :: st
         logical, intent(in) :: at_begin
         integer, intent(out), optional :: stat
         character(len=*), intent(inout), optional :: errmsg
-        if (at_begin) then
-            call fsym_report(st, 'method '//self%sc%name//', step '// &
-                             fsym_int_text(self%steps() + 1), stat, errmsg)
-        else if (st == FSYM_ERR_NONFINITE_STATE) then
-            call fsym_report(st, 'method '//self%sc%name//', step '// &
-                             fsym_int_text(self%steps() + 1)//', stage '// &
-                             fsym_int_text(self%ks%pc)//': the step drove the state to '// &
-                             'NaN/Inf (step too large for this state?); state restored', &
-                             stat, errmsg)
-        else
-            call fsym_report(st, 'method '//self%sc%name//', step '// &
-                             fsym_int_text(self%steps() + 1)//', stage '// &
-                             fsym_int_text(self%ks%pc)//' ('// &
-                             fsym_op_name(self%sc%op(min(self%ks%pc, self%sc%nop)))// &
-                             '); state restored', stat, errmsg)
+        character(len=320) :: buf
+        character(len=*), parameter :: opname(4) = [character(len=17) :: 'drift', 'kick', &
+                                                    'gradient-kick', 'extrapolated-kick']
+        integer :: k, p
+        k = self%sc%op(max(1, min(self%ks%pc, self%sc%nop)))
+        p = 0; buf = ''
+        call fsym_text_put(buf, p, 'method ')
+        call fsym_text_put(buf, p, self%sc%name)
+        call fsym_text_put(buf, p, ', step ')
+        call fsym_text_put_int(buf, p, self%steps() + 1)
+        if (.not. at_begin) then
+            call fsym_text_put(buf, p, ', stage ')
+            call fsym_text_put_int(buf, p, int(self%ks%pc, ik))
+            if (st == FSYM_ERR_NONFINITE_STATE) then
+                call fsym_text_put(buf, p, ': the step drove the state to NaN/Inf (step &
+                                   &too large for this state?); state restored')
+            else
+                call fsym_text_put(buf, p, ' (')
+                call fsym_text_put(buf, p, trim(opname(max(1, min(k, 4)))))
+                call fsym_text_put(buf, p, '); state restored')
+            end if
         end if
+        call fsym_report(st, buf(1:p), stat, errmsg)
     end subroutine report_step_failure
 
     !> Release the workspace; `init` must be called again before use.
