@@ -38,7 +38,8 @@ CLASSES = [
 SUITES = [("fortran_fuzz", "test/test_fuzz_faces.pf (modern, F77, RC, C in-process)"),
           ("c_fuzz", "test/fuzz/fuzz_capi.c under AddressSanitizer"),
           ("checkpoint", "test/test_checkpoint.pf"),
-          ("guard", "test/test_guard.pf")]
+          ("guard", "test/test_guard.pf"),
+          ("alloc", "test/fuzz/alloc_failing_step.f90 (heap allocations of steps)")]
 
 
 def read_lines(path):
@@ -52,6 +53,7 @@ def main():
     ap.add_argument("--status", required=True)
     ap.add_argument("--guard", required=True)
     ap.add_argument("--solar", default=None)
+    ap.add_argument("--alloc", default=None)
     ap.add_argument("--cases", required=True)
     ap.add_argument("--seed", required=True)
     ap.add_argument("--out", required=True)
@@ -102,6 +104,16 @@ def main():
     for key, name in SUITES:
         out.append("| %s | %s |" % (name, status.get(key, "not run")))
     out.append("")
+
+    if a.alloc:
+        with open(a.alloc, encoding="utf-8") as f:
+            rows = [line.split(":")[-1].split() for line in f
+                    if line.startswith("allocations:")]
+        if rows:
+            g, fl, rf, rp = rows[-1]
+            out.append("Heap allocations (counted by interposing malloc): a good step %s, a "
+                       "step failing mid-way %s, a step refused on entry %s, of which the "
+                       "status report (`fsym_report`) alone makes %s.\n" % (g, fl, rf, rp))
 
     out.append("## Checkpoint and restart\n")
     ck = status.get("checkpoint")

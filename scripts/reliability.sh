@@ -54,6 +54,7 @@ run fortran_fuzz env FSYM_FUZZ_CASES="$cases" FSYM_FUZZ_SEED="$seed" FSYM_FUZZ_R
 run c_fuzz "$tmp/build/fuzz/fuzz_capi" "$cases" "$seed" "$report"
 run checkpoint "$tmp/build/test_checkpoint"
 run guard "$tmp/build/test_guard"
+run alloc "$tmp/build/fuzz/alloc_failing_step"
 "$tmp/build/reliability_guard" > "$tmp/guard.txt"
 : > "$tmp/solar.txt"
 if command -v fpm > /dev/null 2>&1; then    # fsym-solar (HDF5) killed and resumed
@@ -63,7 +64,7 @@ if command -v fpm > /dev/null 2>&1; then    # fsym-solar (HDF5) killed and resum
     done
 fi
 python3 "$root/scripts/reliability.py" --fuzz "$report" --status "$tmp/status.txt" \
-    --solar "$tmp/solar.txt" \
+    --solar "$tmp/solar.txt" --alloc "$tmp/alloc.log" \
     --guard "$tmp/guard.txt" --cases "$cases" --seed "$seed" --out "$root/doc/reliability.md"
 echo "[reliability] wrote doc/reliability.md"
 exit $rc

@@ -5,6 +5,7 @@
 module alloc_counter
     use, intrinsic :: iso_c_binding, only: c_long
     implicit none
+    public
     integer(c_long), bind(C, name='fsym_test_mallocs') :: fsym_test_mallocs  !! the count
 end module alloc_counter
 
