@@ -201,6 +201,15 @@ int main(int argc, char **argv)
     FILE *report = argc > 3 ? fopen(argv[3], "a") : NULL;
     int failed = 0;
     if (argc > 2) seed = strtoull(argv[2], NULL, 10) | 1u;
+    /* the header lists every code the library returns, and no more */
+    for (int code = 0; code <= FSYM_ERR_LAST + 1; ++code) {
+        char text[128];
+        fsym_status_message(code, text, (int)sizeof text);
+        if ((strcmp(text, "unknown status code") == 0) != (code == FSYM_ERR_LAST + 1)) {
+            printf("fsym.h and the library disagree on status code %d: \"%s\"\n", code, text);
+            ++failed;
+        }
+    }
     for (int klass = 0; klass < 4; ++klass) {
         int clear = 0, intact = 0, printed = 0, crashes = 0, bad = 0;
         for (int c = 0; c < ncases; ++c) {
