@@ -24,8 +24,24 @@ enum {
     FSYM_ERR_NO_GRADIENT = 8,
     FSYM_ERR_NOT_INITIALIZED = 9,
     FSYM_ERR_WORK_SIZE = 10,
-    FSYM_ERR_MODEL = 11
+    FSYM_ERR_MODEL = 11,
+    FSYM_ERR_NOT_ELLIPTIC = 12,
+    FSYM_ERR_NO_CONVERGENCE = 13,
+    FSYM_ERR_IO = 14,
+    FSYM_ERR_CAPACITY = 15,
+    FSYM_ERR_NO_POTENTIAL = 16,
+    FSYM_ERR_BAD_REQUEST = 17,
+    FSYM_ERR_LAPACK = 18,
+    FSYM_ERR_BAD_ARGUMENT = 19,      /* NULL pointer, nstep <= 0, label too long */
+    FSYM_ERR_STEP_TOO_LARGE = 20,    /* refused by the step-size guard */
+    FSYM_ERR_CHECKPOINT = 21,        /* checkpoint corrupt, other version, or not fitting */
+    FSYM_ERR_CONVENTION = 22,        /* F77 caller with non-default integer size */
+    FSYM_ERR_NO_MEMORY = 23,         /* an allocation failed (e.g. a huge method table) */
+    FSYM_ERR_LAST = 23               /* largest code in use */
 };
+
+/* Longest method label accepted (longer ones: FSYM_ERR_BAD_ARGUMENT, never cut). */
+#define FSYM_NAME_MAX 256
 
 /* Opaque integrator. */
 typedef struct fsym_integrator fsym_integrator;
@@ -40,14 +56,40 @@ typedef int (*fsym_grad_fn)(int d, int n, const double *q, const double *a, doub
 
 /* A new integrator for the method label ("FR", "A", "A'", "C", "A6", "BM", "M2(-0.5)", ...)
  * on arrays of d components and n bodies. grad may be NULL: methods with a gradient kick
- * (A, C, AN) then need their primed (extrapolated) form. *handle is NULL on failure. */
+ * (A, C, AN) then need their primed (extrapolated) form. *handle is NULL on failure.
+ * NULL method, accel or handle: FSYM_ERR_BAD_ARGUMENT. */
 int fsym_create(const char *method, int d, int n, fsym_accel_fn accel, fsym_grad_fn grad,
                 void *user, fsym_integrator **handle);
 
-/* nstep steps of size h; on failure q, v hold the state after the last completed step. */
+/* nstep steps of size h; on failure q, v hold the state after the last completed step
+ * (fsym_steps_done says how many, fsym_last_message why). nstep <= 0, NULL q or v:
+ * FSYM_ERR_BAD_ARGUMENT; NULL handle: FSYM_ERR_NOT_INITIALIZED. */
 int fsym_step(fsym_integrator *handle, double *q, double *v, double h, int nstep);
 
-/* Force and gradient evaluations so far. */
+/* Steps completed by the last fsym_step call (*last) and since creation (*total);
+ * either pointer may be NULL. */
+int fsym_steps_done(const fsym_integrator *handle, long long *last, long long *total);
+
+/* The full message of the last failing call on this integrator (method, step, stage,
+ * cause), NUL-terminated in buf of len bytes; empty when nothing failed. */
+int fsym_last_message(const fsym_integrator *handle, char *buf, int len);
+
+/* Forget the cached force: call it after changing what the callbacks read (a mass, a
+ * coupling) between steps. */
+int fsym_reset_cache(fsym_integrator *handle);
+
+/* Checkpoint and restart: the complete state (q, v, clock, counters, method, cached forces,
+ * compensation terms) as one array of doubles with a version tag, the same format on every
+ * face. A run resumed with fsym_checkpoint_load (on an integrator created for the same
+ * method and arrays, with the callbacks' data in the same state) is bitwise identical to an
+ * uninterrupted one. Errors: FSYM_ERR_CHECKPOINT (corrupt, other version/method/shape). */
+int fsym_checkpoint_length(const fsym_integrator *handle, long long *len);
+int fsym_checkpoint_save(fsym_integrator *handle, const double *q, const double *v,
+                         double *ck, long long len);
+int fsym_checkpoint_load(fsym_integrator *handle, double *q, double *v, const double *ck,
+                         long long len);
+
+/* Force and gradient evaluations so far (a NULL pointer is skipped). */
 int fsym_counts(const fsym_integrator *handle, long long *nforce, long long *ngrad);
 
 /* Free the integrator (NULL is ignored). */

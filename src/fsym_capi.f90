@@ -10,7 +10,7 @@ module fsym_capi
                                            c_long_long, c_null_ptr, c_null_funptr, c_null_char, &
                                            c_associated, c_f_pointer, c_f_procpointer, c_loc
     use fsym_kinds, only: wp, ik
-    use fsym_status, only: fsym_status_message, FSYM_SUCCESS, FSYM_ERR_BAD_PARAMETER, &
+    use fsym_status, only: fsym_status_message, FSYM_SUCCESS, FSYM_ERR_BAD_ARGUMENT, &
                            FSYM_ERR_NO_GRADIENT, FSYM_ERR_NOT_INITIALIZED, FSYM_ERR_CAPACITY
     use fsym_force, only: force_model_t
     use fsym_integrator, only: integrator_t
@@ -18,6 +18,11 @@ module fsym_capi
     private
 
     public :: fsym_c_create, fsym_c_step, fsym_c_counts, fsym_c_destroy, fsym_c_message
+    public :: fsym_c_steps_done, fsym_c_last_message, fsym_c_reset_cache
+    public :: fsym_c_checkpoint_length, fsym_c_checkpoint_save, fsym_c_checkpoint_load
+
+    !> Longest method label read from C (longer ones are refused, never cut).
+    integer, parameter, public :: FSYM_C_NAME_MAX = 256
 
     abstract interface
         !> C acceleration callback: `int accel(int d, int n, const double *q, double *a,
@@ -58,6 +63,8 @@ module fsym_capi
         type(integrator_t) :: it
         type(c_model_t) :: model
         integer :: d = 0, n = 0
+        integer(ik) :: last_done = 0          ! steps completed by the last fsym_step
+        character(len=512) :: msg = ''        ! message of the last failing call
     end type c_handle_t
 
 contains
@@ -94,27 +101,39 @@ contains
     !> `int fsym_create(const char *method, int d, int n, fsym_accel_fn accel,
     !> fsym_grad_fn grad, void *user, fsym_integrator **handle)`: a new integrator for the
     !> method label on arrays (d, n). `grad` may be NULL (then methods with a gradient kick
-    !> are refused; use their primed form). `*handle` is NULL on failure.
+    !> are refused; use their primed form). `*handle` is NULL on failure. NULL `method`,
+    !> `accel` or `handle`, and a label longer than FSYM_C_NAME_MAX characters, give
+    !> FSYM_ERR_BAD_ARGUMENT.
     integer(c_int) function fsym_c_create(method, d, n, accel, grad, user, handle) &
         bind(C, name='fsym_create') result(stat)
-        character(kind=c_char), intent(in) :: method(*)   !! NUL-terminated method label
+        type(c_ptr), value :: method                      !! NUL-terminated method label
         integer(c_int), value :: d, n                     !! dimensions, bodies
         type(c_funptr), value :: accel                    !! acceleration callback
         type(c_funptr), value :: grad                     !! gradient callback or NULL
         type(c_ptr), value :: user                        !! passed to the callbacks
-        type(c_ptr), intent(out) :: handle                !! the new integrator
+        type(c_ptr), value :: handle                      !! where the new integrator goes
         type(c_handle_t), pointer :: p
-        character(len=:), allocatable :: name
+        type(c_ptr), pointer :: out
+        character(kind=c_char), pointer :: chars(:)
+        character(len=FSYM_C_NAME_MAX) :: name
         character(len=256) :: msg
-        integer :: k, st
-        handle = c_null_ptr
-        if (.not. c_associated(accel)) then
-            stat = FSYM_ERR_BAD_PARAMETER; return
-        end if
+        integer :: k, st, nlen
+        stat = FSYM_ERR_BAD_ARGUMENT
+        if (.not. c_associated(handle)) return
+        call c_f_pointer(handle, out)
+        out = c_null_ptr
+        if (.not. (c_associated(accel) .and. c_associated(method))) return
+        call c_f_pointer(method, chars, [FSYM_C_NAME_MAX + 1])
+        nlen = -1
+        do k = 1, FSYM_C_NAME_MAX + 1
+            if (chars(k) == c_null_char) then
+                nlen = k - 1; exit
+            end if
+        end do
+        if (nlen < 0) return
         name = ''
-        do k = 1, 64
-            if (method(k) == c_null_char) exit
-            name = name//method(k)
+        do k = 1, nlen
+            name(k:k) = chars(k)
         end do
         allocate (p, stat=st)
         if (st /= 0) then
@@ -123,18 +142,20 @@ contains
         p%model%accel = accel
         p%model%grad = grad
         p%model%user = user
-        call p%it%init_by_name(name, p%model, int(d), int(n), st, msg)
+        call p%it%init_by_name(name(1:nlen), p%model, int(d), int(n), st, msg)
         if (st /= FSYM_SUCCESS) then
             deallocate (p)
             stat = int(st, c_int); return
         end if
         p%d = d; p%n = n
-        handle = c_loc(p)
+        out = c_loc(p)
         stat = FSYM_SUCCESS
     end function fsym_c_create
 
     !> `int fsym_step(fsym_integrator *handle, double *q, double *v, double h, int nstep)`:
-    !> nstep steps of size h. On failure q and v hold the state after the last completed step.
+    !> nstep steps of size h. On failure q and v hold the state after the last completed step
+    !> (`fsym_steps_done` tells how many, `fsym_last_message` what went wrong). nstep <= 0
+    !> and NULL q or v give FSYM_ERR_BAD_ARGUMENT; a NULL handle FSYM_ERR_NOT_INITIALIZED.
     integer(c_int) function fsym_c_step(handle, q, v, h, nstep) bind(C, name='fsym_step') &
         result(stat)
         type(c_ptr), value :: handle       !! integrator
@@ -143,35 +164,178 @@ contains
         integer(c_int), value :: nstep     !! number of steps
         type(c_handle_t), pointer :: p
         real(wp), pointer, contiguous :: qf(:, :), vf(:, :)
-        character(len=256) :: msg
+        integer(ik) :: before
         integer :: st
-        if (.not. (c_associated(handle) .and. c_associated(q) .and. c_associated(v))) then
-            stat = FSYM_ERR_NOT_INITIALIZED; return
-        end if
-        call c_f_pointer(handle, p)
-        call c_f_pointer(q, qf, [p%d, p%n])
-        call c_f_pointer(v, vf, [p%d, p%n])
-        st = FSYM_SUCCESS
-        if (nstep > 0) call p%it%run(p%model, qf, vf, real(h, wp), int(nstep), st, msg)
-        stat = int(st, c_int)
-    end function fsym_c_step
-
-    !> `int fsym_counts(const fsym_integrator *handle, long long *nforce, long long *ngrad)`:
-    !> force and gradient evaluations so far.
-    integer(c_int) function fsym_c_counts(handle, nforce, ngrad) bind(C, name='fsym_counts') &
-        result(stat)
-        type(c_ptr), value :: handle                  !! integrator
-        integer(c_long_long), intent(out) :: nforce   !! force evaluations
-        integer(c_long_long), intent(out) :: ngrad    !! gradient evaluations
-        type(c_handle_t), pointer :: p
-        integer(ik) :: nf, ng
-        nforce = 0; ngrad = 0
         if (.not. c_associated(handle)) then
             stat = FSYM_ERR_NOT_INITIALIZED; return
         end if
         call c_f_pointer(handle, p)
-        nf = p%it%force_evaluations(); ng = p%it%gradient_evaluations()
-        nforce = int(nf, c_long_long); ngrad = int(ng, c_long_long)
+        p%last_done = 0
+        if (.not. (c_associated(q) .and. c_associated(v)) .or. nstep < 1) then
+            p%msg = 'fsym_step: q and v must not be NULL and nstep must be >= 1'
+            stat = FSYM_ERR_BAD_ARGUMENT; return
+        end if
+        call c_f_pointer(q, qf, [p%d, p%n])
+        call c_f_pointer(v, vf, [p%d, p%n])
+        before = p%it%steps()
+        st = FSYM_SUCCESS
+        call p%it%run(p%model, qf, vf, real(h, wp), int(nstep), st, p%msg)
+        p%last_done = p%it%steps() - before
+        stat = int(st, c_int)
+    end function fsym_c_step
+
+    !> `int fsym_steps_done(const fsym_integrator *handle, long long *last,
+    !> long long *total)`: steps completed by the last `fsym_step` call and since creation
+    !> (either pointer may be NULL).
+    integer(c_int) function fsym_c_steps_done(handle, last, total) &
+        bind(C, name='fsym_steps_done') result(stat)
+        type(c_ptr), value :: handle          !! integrator
+        type(c_ptr), value :: last, total     !! long long *, or NULL
+        type(c_handle_t), pointer :: p
+        integer(c_long_long), pointer :: x
+        stat = FSYM_ERR_NOT_INITIALIZED
+        if (.not. c_associated(handle)) return
+        call c_f_pointer(handle, p)
+        if (c_associated(last)) then
+            call c_f_pointer(last, x); x = int(p%last_done, c_long_long)
+        end if
+        if (c_associated(total)) then
+            call c_f_pointer(total, x); x = int(p%it%steps(), c_long_long)
+        end if
+        stat = FSYM_SUCCESS
+    end function fsym_c_steps_done
+
+    !> `int fsym_last_message(const fsym_integrator *handle, char *buf, int len)`: the full
+    !> message of the last failing call on this integrator (method, step, stage, cause), cut
+    !> to fit `len` bytes with NUL; empty when nothing failed.
+    integer(c_int) function fsym_c_last_message(handle, buf, buflen) &
+        bind(C, name='fsym_last_message') result(stat)
+        type(c_ptr), value :: handle          !! integrator
+        type(c_ptr), value :: buf             !! receives the text
+        integer(c_int), value :: buflen       !! size of buf in bytes
+        type(c_handle_t), pointer :: p
+        stat = FSYM_ERR_NOT_INITIALIZED
+        if (.not. c_associated(handle)) return
+        call c_f_pointer(handle, p)
+        stat = FSYM_ERR_BAD_ARGUMENT
+        if (.not. c_associated(buf) .or. buflen < 1) return
+        call copy_text(trim(p%msg), buf, buflen)
+        stat = FSYM_SUCCESS
+    end function fsym_c_last_message
+
+    !> `int fsym_reset_cache(fsym_integrator *handle)`: forget the cached force (call it after
+    !> changing the parameters the callback reads, e.g. a mass, between steps).
+    integer(c_int) function fsym_c_reset_cache(handle) bind(C, name='fsym_reset_cache') &
+        result(stat)
+        type(c_ptr), value :: handle          !! integrator
+        type(c_handle_t), pointer :: p
+        stat = FSYM_ERR_NOT_INITIALIZED
+        if (.not. c_associated(handle)) return
+        call c_f_pointer(handle, p)
+        call p%it%reset_cache()
+        stat = FSYM_SUCCESS
+    end function fsym_c_reset_cache
+
+    !> `int fsym_checkpoint_length(const fsym_integrator *handle, long long *len)`: length of
+    !> the checkpoint array (doubles).
+    integer(c_int) function fsym_c_checkpoint_length(handle, length) &
+        bind(C, name='fsym_checkpoint_length') result(stat)
+        type(c_ptr), value :: handle          !! integrator
+        type(c_ptr), value :: length          !! long long *: the length
+        type(c_handle_t), pointer :: p
+        integer(c_long_long), pointer :: x
+        stat = FSYM_ERR_NOT_INITIALIZED
+        if (.not. c_associated(handle)) return
+        call c_f_pointer(handle, p)
+        stat = FSYM_ERR_BAD_ARGUMENT
+        if (.not. c_associated(length)) return
+        call c_f_pointer(length, x)
+        x = int(p%it%checkpoint_length(), c_long_long)
+        stat = FSYM_SUCCESS
+    end function fsym_c_checkpoint_length
+
+    !> `int fsym_checkpoint_save(fsym_integrator *handle, const double *q, const double *v,
+    !> double *ck, long long len)`: the complete state into ck[len] (see the modern
+    !> `save_checkpoint`; the same format on every face).
+    integer(c_int) function fsym_c_checkpoint_save(handle, q, v, ck, length) &
+        bind(C, name='fsym_checkpoint_save') result(stat)
+        type(c_ptr), value :: handle          !! integrator
+        type(c_ptr), value :: q, v            !! state: double[n][d]
+        type(c_ptr), value :: ck              !! the checkpoint: double[len]
+        integer(c_long_long), value :: length !! its length
+        stat = checkpoint_call(handle, q, v, ck, length, .true.)
+    end function fsym_c_checkpoint_save
+
+    !> `int fsym_checkpoint_load(fsym_integrator *handle, double *q, double *v,
+    !> const double *ck, long long len)`: resume from a checkpoint of the same method on the
+    !> same arrays; bitwise as if never interrupted. On error nothing changes.
+    integer(c_int) function fsym_c_checkpoint_load(handle, q, v, ck, length) &
+        bind(C, name='fsym_checkpoint_load') result(stat)
+        type(c_ptr), value :: handle          !! integrator
+        type(c_ptr), value :: q, v            !! state: double[n][d]
+        type(c_ptr), value :: ck              !! the checkpoint: double[len]
+        integer(c_long_long), value :: length !! its length
+        stat = checkpoint_call(handle, q, v, ck, length, .false.)
+    end function fsym_c_checkpoint_load
+
+    !> Save (`save`) or load a checkpoint through a C handle, with the NULL checks.
+    integer(c_int) function checkpoint_call(handle, q, v, ck, length, save) result(stat)
+        type(c_ptr), intent(in) :: handle, q, v, ck
+        integer(c_long_long), intent(in) :: length
+        logical, intent(in) :: save
+        type(c_handle_t), pointer :: p
+        real(wp), pointer, contiguous :: qf(:, :), vf(:, :), c(:)
+        integer :: st
+        stat = FSYM_ERR_NOT_INITIALIZED
+        if (.not. c_associated(handle)) return
+        call c_f_pointer(handle, p)
+        stat = FSYM_ERR_BAD_ARGUMENT
+        if (.not. (c_associated(q) .and. c_associated(v) .and. c_associated(ck)) .or. &
+            length < 0) return
+        call c_f_pointer(q, qf, [p%d, p%n])
+        call c_f_pointer(v, vf, [p%d, p%n])
+        call c_f_pointer(ck, c, [length])
+        if (save) then
+            call p%it%save_checkpoint(qf, vf, c, st, p%msg)
+        else
+            call p%it%load_checkpoint(qf, vf, c, st, p%msg)
+        end if
+        stat = int(st, c_int)
+    end function checkpoint_call
+
+    !> Copy `text` into the C buffer `buf` of `buflen` bytes, cut and NUL-terminated.
+    subroutine copy_text(text, buf, buflen)
+        character(len=*), intent(in) :: text
+        type(c_ptr), intent(in) :: buf
+        integer(c_int), intent(in) :: buflen
+        character(kind=c_char), pointer :: b(:)
+        integer :: k, m
+        call c_f_pointer(buf, b, [buflen])
+        m = min(len(text), int(buflen) - 1)
+        do k = 1, m
+            b(k) = text(k:k)
+        end do
+        b(m + 1) = c_null_char
+    end subroutine copy_text
+
+    !> `int fsym_counts(const fsym_integrator *handle, long long *nforce, long long *ngrad)`:
+    !> force and gradient evaluations so far (a NULL count pointer is skipped).
+    integer(c_int) function fsym_c_counts(handle, nforce, ngrad) bind(C, name='fsym_counts') &
+        result(stat)
+        type(c_ptr), value :: handle                  !! integrator
+        type(c_ptr), value :: nforce                  !! long long *: force evaluations
+        type(c_ptr), value :: ngrad                   !! long long *: gradient evaluations
+        type(c_handle_t), pointer :: p
+        integer(c_long_long), pointer :: x
+        stat = FSYM_ERR_NOT_INITIALIZED
+        if (.not. c_associated(handle)) return
+        call c_f_pointer(handle, p)
+        if (c_associated(nforce)) then
+            call c_f_pointer(nforce, x); x = int(p%it%force_evaluations(), c_long_long)
+        end if
+        if (c_associated(ngrad)) then
+            call c_f_pointer(ngrad, x); x = int(p%it%gradient_evaluations(), c_long_long)
+        end if
         stat = FSYM_SUCCESS
     end function fsym_c_counts
 
@@ -186,20 +350,13 @@ contains
     end subroutine fsym_c_destroy
 
     !> `void fsym_status_message(int code, char *buf, int len)`: NUL-terminated text of a
-    !> status code, cut to fit `len` bytes.
+    !> status code, cut to fit `len` bytes (nothing is written for a NULL buf or len < 1).
     subroutine fsym_c_message(code, buf, buflen) bind(C, name='fsym_status_message')
         integer(c_int), value :: code              !! status code
-        character(kind=c_char), intent(out) :: buf(*)  !! receives the text
+        type(c_ptr), value :: buf                  !! receives the text
         integer(c_int), value :: buflen            !! size of buf in bytes
-        character(len=:), allocatable :: text
-        integer :: k, m
-        if (buflen < 1) return
-        text = fsym_status_message(int(code))
-        m = min(len(text), int(buflen) - 1)
-        do k = 1, m
-            buf(k) = text(k:k)
-        end do
-        buf(m + 1) = c_null_char
+        if (buflen < 1 .or. .not. c_associated(buf)) return
+        call copy_text(fsym_status_message(int(code)), buf, buflen)
     end subroutine fsym_c_message
 
 end module fsym_capi

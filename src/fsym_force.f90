@@ -24,6 +24,10 @@ module fsym_force
         procedure :: has_potential => force_has_no_potential  !! whether `potential` is provided
         procedure :: advance => force_no_advance
             !! optional: whole steps of a scheme in the model's own fused loop (default: none)
+        procedure :: local_frequency => force_no_frequency
+            !! largest local frequency squared, for the step-size guard (optional)
+        procedure :: has_frequency => force_has_no_frequency
+            !! whether `local_frequency` is provided
     end type force_model_t
 
     !> Interface of `force_model_t%acceleration`.
@@ -119,5 +123,25 @@ contains
         class(force_model_t), intent(in) :: self  !! the model
         force_has_no_potential = .false.
     end function force_has_no_potential
+
+    !> Default local frequency: not provided (omega2 = 0, r = 0, `stat` = 1). A model that
+    !> overrides it (with `has_frequency`) returns the largest omega^2 of its bodies or pairs
+    !> at q, e.g. 2 mu / r^3 for a Kepler pair at distance r, and that r; the integrator's
+    !> step-size guard refuses steps with h omega above the method's stability limit.
+    subroutine force_no_frequency(self, q, omega2, r, stat)
+        class(force_model_t), intent(inout) :: self      !! the model
+        real(wp), intent(in), contiguous :: q(:, :)      !! positions (d, n)
+        real(wp), intent(out) :: omega2                  !! largest local omega^2
+        real(wp), intent(out) :: r                       !! distance where it occurs
+        integer, intent(inout) :: stat                   !! 0 on entry; non-zero = failure
+        omega2 = 0.0_wp; r = 0.0_wp
+        stat = 1
+    end subroutine force_no_frequency
+
+    !> Whether `local_frequency` is provided (default: no).
+    logical function force_has_no_frequency(self)
+        class(force_model_t), intent(in) :: self  !! the model
+        force_has_no_frequency = .false.
+    end function force_has_no_frequency
 
 end module fsym_force

@@ -9,6 +9,10 @@ module fsym_integrator
     use fsym_stepper, only: stepper_t, observer_t
     use fsym_kernel, only: kernel_state_t, fsym_kernel_layout, fsym_kernel_run, &
                            fsym_kernel_invalidate, fsym_kernel_abort, KERNEL_SUSPEND
+    use fsym_text, only: fsym_text_put, fsym_text_put_int
+    use fsym_guard, only: guard_t, fsym_guard_setup, fsym_guard_check, fsym_guard_message
+    use fsym_checkpoint, only: ckpt_clock_t, fsym_checkpoint_length, fsym_checkpoint_pack, &
+                               fsym_checkpoint_unpack
     implicit none
     private
 
@@ -20,6 +24,7 @@ module fsym_integrator
         type(kernel_state_t) :: ks           ! the kernel's state
         logical :: ready = .false.
         logical :: needs_g = .false.        ! the scheme has gradient kicks
+        type(guard_t) :: guard              ! the step-size guard (off by default)
     contains
         procedure :: init => integrator_init
             !! set up for a scheme, a model and arrays (d, n)
@@ -33,6 +38,14 @@ module fsym_integrator
         procedure :: scheme => integrator_scheme        !! the scheme in use
         procedure :: reset_cache => integrator_reset_cache  !! forget the cached end-of-step force
         procedure :: work_size => integrator_work_size  !! reals of workspace held
+        procedure :: checkpoint_length => integrator_checkpoint_length
+            !! length of the flat checkpoint array
+        procedure :: save_checkpoint => integrator_save_checkpoint
+            !! the complete state into a flat array (see `fsym_checkpoint`)
+        procedure :: load_checkpoint => integrator_load_checkpoint
+            !! resume from a flat array: bitwise as if never interrupted
+        procedure :: set_guard => integrator_set_guard
+            !! turn the step-size guard on or off
     end type integrator_t
 
 contains
@@ -93,6 +106,7 @@ contains
                                    s%ngrad, 0.0_wp)
         if (present(t0)) call self%set_time(t0)
         self%needs_g = s%needs_gradient()
+        self%guard%on = .false.             ! a new set-up starts unguarded
         self%ready = .true.
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine integrator_init
@@ -154,6 +168,11 @@ contains
         integer :: st
         logical :: stop
         call self%note_stop(.false.)
+        if (nsteps < 1) then
+            call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'run: nsteps = '//fsym_int_text(nsteps)// &
+                             ' (must be >= 1)', stat, errmsg)
+            return
+        end if
         if (.not. present(observer)) then
             call advance(self, model, q, v, h, nsteps, ndone, stat, errmsg, recorder)
             return
@@ -211,12 +230,17 @@ contains
         end if
         step0 = self%steps()
         nfused = 0
-        if (.not. present(recorder) .and. .not. self%ks%active) then
-            call model%advance(self%sc%op, self%sc%c, self%sc%u, self%ks, q, v, self%w, h, &
-                               nsteps, nfused)
+        if (self%guard%on) then
+            ! the guard looks at every step: no fused steps in the model
+            call guarded_run(self, model, q, v, h, nsteps, ndone, st, recorder, step0)
+        else
+            if (.not. present(recorder) .and. .not. self%ks%active) then
+                call model%advance(self%sc%op, self%sc%c, self%sc%u, self%ks, q, v, self%w, &
+                                   h, nsteps, nfused)
+            end if
+            call fsym_kernel_run(self%sc%op, self%sc%c, self%sc%u, model, self%ks, q, v, &
+                                 self%w, h, nsteps - nfused, ndone, st, recorder, step0 + nfused)
         end if
-        call fsym_kernel_run(self%sc%op, self%sc%c, self%sc%u, model, self%ks, q, v, self%w, h, &
-                             nsteps - nfused, ndone, st, recorder, step0 + nfused)
         if (st == KERNEL_SUSPEND) then
             ! a model's stat that happens to be the kernel's suspend code is a failure here
             call fsym_kernel_abort(self%ks, q, v, self%w)
@@ -226,29 +250,107 @@ contains
         nf = self%ks%nf; ng = self%ks%ng
         call self%counters(nf, ng, 1)
         call self%count_step(h, ndone)
-        if (st /= FSYM_SUCCESS) then
+        if (st == FSYM_ERR_STEP_TOO_LARGE) then
+            call fsym_report(st, fsym_guard_message(self%guard, self%sc%name, self%time(), &
+                             self%steps() + 1), stat, errmsg)
+            return
+        else if (st /= FSYM_SUCCESS) then
             call report_step_failure(self, st, self%ks%pc == 0, stat, errmsg); return
         end if
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine advance
 
-    !> Report a failed step (rejected on entry when `at_begin`).
+    !> The kernel step by step, each step checked by the guard (h omega <= limit) at its
+    !> start and at its end; a step that ends beyond the limit is undone (the kernel keeps
+    !> the state of the step's start), so a refused step leaves the state as it was.
+    subroutine guarded_run(self, model, q, v, h, nsteps, ndone, st, recorder, step0)
+        class(integrator_t), intent(inout) :: self
+        class(force_model_t), intent(inout) :: model
+        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)
+        real(wp), intent(in) :: h
+        integer(ik), intent(in) :: nsteps, step0
+        integer(ik), intent(out) :: ndone
+        integer, intent(out) :: st
+        class(recorder_t), intent(inout), optional :: recorder
+        integer(ik) :: i, nd
+        ndone = 0; st = FSYM_SUCCESS
+        do i = 1, nsteps
+            call fsym_guard_check(self%guard, model, q, h, st)
+            if (st /= FSYM_SUCCESS) exit
+            call fsym_kernel_run(self%sc%op, self%sc%c, self%sc%u, model, self%ks, q, v, &
+                                 self%w, h, 1_ik, nd, st, recorder, step0 + ndone)
+            if (st /= FSYM_SUCCESS) return
+            call fsym_guard_check(self%guard, model, q, h, st)
+            if (st /= FSYM_SUCCESS) then
+                self%ks%active = .true.        ! undo the step just taken
+                call fsym_kernel_abort(self%ks, q, v, self%w)
+                exit
+            end if
+            ndone = ndone + nd
+        end do
+        self%ks%pc = 0
+    end subroutine guarded_run
+
+    !> Turn the step-size guard on (`on`) or off. On, every step first asks the model for its
+    !> largest local frequency omega (`local_frequency`, e.g. omega^2 = 2 mu/r^3 for Kepler)
+    !> and refuses a step with |h| omega > fraction x*, x* being the end of the method's
+    !> stability interval on the harmonic oscillator (from its own coefficient table,
+    !> `fsym_stability_interval`): status FSYM_ERR_STEP_TOO_LARGE, a message with the time,
+    !> r, h omega and x*, and the state intact. `fraction` (default 1) tightens the limit.
+    !> A model without `local_frequency` cannot be guarded (FSYM_ERR_BAD_ARGUMENT).
+    subroutine integrator_set_guard(self, model, on, stat, errmsg, fraction)
+        class(integrator_t), intent(inout) :: self            !! the integrator
+        class(force_model_t), intent(in) :: model             !! the force model to be used
+        logical, intent(in) :: on                             !! guard on or off
+        integer, intent(out), optional :: stat                !! status code
+        character(len=*), intent(inout), optional :: errmsg   !! message on error
+        real(wp), intent(in), optional :: fraction            !! of x* (default 1)
+        integer :: st
+        character(len=128) :: msg
+        if (.not. self%ready) then
+            call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'set_guard before init', stat, errmsg)
+            return
+        end if
+        if (.not. on) then
+            self%guard%on = .false.
+            if (present(stat)) stat = FSYM_SUCCESS
+            return
+        end if
+        call fsym_guard_setup(self%guard, self%sc, model, st, msg, fraction)
+        call fsym_pass(st, msg, stat, errmsg)
+    end subroutine integrator_set_guard
+
+    !> Report a failed step (rejected on entry when `at_begin`). The message is built in a
+    !> fixed buffer without allocation (a failing step should not allocate to say why).
     subroutine report_step_failure(self, st, at_begin, stat, errmsg)
         class(integrator_t), intent(in) :: self
         integer, intent(in) :: st
         logical, intent(in) :: at_begin
         integer, intent(out), optional :: stat
         character(len=*), intent(inout), optional :: errmsg
-        if (at_begin) then
-            call fsym_report(st, 'method '//self%sc%name//', step '// &
-                             fsym_int_text(self%steps() + 1), stat, errmsg)
-        else
-            call fsym_report(st, 'method '//self%sc%name//', step '// &
-                             fsym_int_text(self%steps() + 1)//', stage '// &
-                             fsym_int_text(self%ks%pc)//' ('// &
-                             fsym_op_name(self%sc%op(min(self%ks%pc, self%sc%nop)))// &
-                             '); state restored', stat, errmsg)
+        character(len=320) :: buf
+        character(len=*), parameter :: opname(4) = [character(len=17) :: 'drift', 'kick', &
+                                                    'gradient-kick', 'extrapolated-kick']
+        integer :: k, p
+        k = self%sc%op(max(1, min(self%ks%pc, self%sc%nop)))
+        p = 0; buf = ''
+        call fsym_text_put(buf, p, 'method ')
+        call fsym_text_put(buf, p, self%sc%name)
+        call fsym_text_put(buf, p, ', step ')
+        call fsym_text_put_int(buf, p, self%steps() + 1)
+        if (.not. at_begin) then
+            call fsym_text_put(buf, p, ', stage ')
+            call fsym_text_put_int(buf, p, int(self%ks%pc, ik))
+            if (st == FSYM_ERR_NONFINITE_STATE) then
+                call fsym_text_put(buf, p, ': the step drove the state to NaN/Inf (step &
+                                   &too large for this state?); state restored')
+            else
+                call fsym_text_put(buf, p, ' (')
+                call fsym_text_put(buf, p, trim(opname(max(1, min(k, 4)))))
+                call fsym_text_put(buf, p, '); state restored')
+            end if
         end if
+        call fsym_report(st, buf(1:p), stat, errmsg)
     end subroutine report_step_failure
 
     !> Release the workspace; `init` must be called again before use.
@@ -280,6 +382,81 @@ contains
         if (allocated(self%w)) m = size(self%w, kind=ik)
         integrator_work_size = m
     end function integrator_work_size
+
+    !> Length of the checkpoint array of this integrator (0 before init).
+    pure integer(ik) function integrator_checkpoint_length(self) result(m)
+        class(integrator_t), intent(in) :: self  !! the integrator
+        m = 0
+        if (self%ready) m = fsym_checkpoint_length(self%sc%nop, self%ks%d, self%ks%n, &
+                                                   self%ks%nslot)
+    end function integrator_checkpoint_length
+
+    !> Write the complete state (q, v, clock, counters, method, cached forces, compensation
+    !> terms) into `ck`, at least `checkpoint_length()` long. Between steps only.
+    subroutine integrator_save_checkpoint(self, q, v, ck, stat, errmsg)
+        class(integrator_t), intent(inout) :: self            !! the integrator
+        real(wp), intent(in), contiguous :: q(:, :)           !! positions (d, n)
+        real(wp), intent(in), contiguous :: v(:, :)           !! velocities (d, n)
+        real(wp), intent(out) :: ck(:)                        !! the checkpoint
+        integer, intent(out), optional :: stat                !! status code
+        character(len=*), intent(inout), optional :: errmsg   !! message on error
+        type(ckpt_clock_t) :: clock
+        if (.not. checkpoint_fits(self, q, v, size(ck, kind=ik), stat, errmsg)) return
+        call self%clock_state(clock%t_base, clock%h_now, clock%k_since, clock%steps, 0)
+        call fsym_checkpoint_pack(self%sc%op, self%sc%c, self%sc%u, self%ks, clock, q, v, &
+                                  self%w, ck)
+        if (present(stat)) stat = FSYM_SUCCESS
+    end subroutine integrator_save_checkpoint
+
+    !> Resume from a checkpoint written by `save_checkpoint` (or by another face) of the same
+    !> method on the same arrays: q, v, the clock, the counters and the kernel state are
+    !> restored, so the run goes on bitwise as if never interrupted. The integrator must be
+    !> set up (`init`) for the same method, shape and compensation; the force model must be
+    !> in the same state as when the checkpoint was written. On error nothing changes.
+    subroutine integrator_load_checkpoint(self, q, v, ck, stat, errmsg)
+        class(integrator_t), intent(inout) :: self            !! the integrator
+        real(wp), intent(inout), contiguous :: q(:, :)        !! positions (d, n)
+        real(wp), intent(inout), contiguous :: v(:, :)        !! velocities (d, n)
+        real(wp), intent(in) :: ck(:)                         !! the checkpoint
+        integer, intent(out), optional :: stat                !! status code
+        character(len=*), intent(inout), optional :: errmsg   !! message on error
+        type(ckpt_clock_t) :: clock
+        integer :: st
+        integer(ik) :: nf, ng
+        character(len=128) :: msg
+        if (.not. checkpoint_fits(self, q, v, size(ck, kind=ik), stat, errmsg)) return
+        call fsym_checkpoint_unpack(ck, self%sc%op, self%sc%c, self%sc%u, self%ks, clock, q, &
+                                    v, self%w, st, msg)
+        if (st /= FSYM_SUCCESS) then
+            call fsym_report(st, msg, stat, errmsg); return
+        end if
+        call self%clock_state(clock%t_base, clock%h_now, clock%k_since, clock%steps, 1)
+        nf = self%ks%nf; ng = self%ks%ng
+        call self%counters(nf, ng, 1)
+        if (present(stat)) stat = FSYM_SUCCESS
+    end subroutine integrator_load_checkpoint
+
+    !> The checks a checkpoint call makes: set up, shapes, length of ck.
+    logical function checkpoint_fits(self, q, v, nck, stat, errmsg) result(ok)
+        class(integrator_t), intent(in) :: self
+        real(wp), intent(in) :: q(:, :), v(:, :)
+        integer(ik), intent(in) :: nck
+        integer, intent(out), optional :: stat
+        character(len=*), intent(inout), optional :: errmsg
+        ok = .false.
+        if (.not. self%ready) then
+            call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'checkpoint before init', stat, errmsg)
+        else if (size(q, 1) /= self%ks%d .or. size(q, 2) /= self%ks%n .or. &
+                 size(v, 1) /= self%ks%d .or. size(v, 2) /= self%ks%n) then
+            call fsym_report(FSYM_ERR_SHAPE, shape_text(self%ks%d, self%ks%n, q, v), stat, &
+                             errmsg)
+        else if (nck < self%checkpoint_length()) then
+            call fsym_report(FSYM_ERR_CHECKPOINT, 'checkpoint array shorter than '// &
+                             fsym_int_text(self%checkpoint_length()), stat, errmsg)
+        else
+            ok = .true.
+        end if
+    end function checkpoint_fits
 
     function shape_text(d, n, q, v) result(s)
         integer, intent(in) :: d, n

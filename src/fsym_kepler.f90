@@ -4,7 +4,7 @@
 !> paper. Scalar physics is pure; `kepler_model_t` is the force model for `n` independent
 !> bodies about a fixed centre (columns of q).
 module fsym_kepler
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
     use fsym_kinds, only: wp, ik
     use fsym_status
     use fsym_force, only: force_model_t
@@ -30,6 +30,8 @@ module fsym_kepler
         procedure :: potential => kepler_model_potential  !! sum of -mu/|q_j|
         procedure :: has_potential => kepler_model_has_potential  !! true
         procedure :: advance => kepler_model_advance  !! one body in d = 2, 3: fused steps
+        procedure :: local_frequency => kepler_model_frequency  !! max 2 mu / r^3 over bodies
+        procedure :: has_frequency => kepler_model_has_potential  !! true
     end type kepler_model_t
 
     public :: kepler_acceleration, kepler_gradient, kepler_potential, kepler_energy
@@ -191,13 +193,22 @@ contains
 
     !> A planar orbit of eccentricity e and semi-major axis 1 (mu = 1) started at pericentre
     !> on the x axis: q = (1-e, 0), v = (0, sqrt((1+e)/(1-e))) (Hairer-Lubich-Wanner).
-    pure subroutine kepler_elliptic_orbit(e, q, v, period)
+    !> For e outside [0, 1) there is no such ellipse: `stat` = FSYM_ERR_NOT_ELLIPTIC and
+    !> q = v = NaN (so that an integrator refuses the state if `stat` is not looked at).
+    pure subroutine kepler_elliptic_orbit(e, q, v, period, stat)
         real(wp), intent(in) :: e                 !! eccentricity, 0 <= e < 1
         real(wp), intent(out) :: q(2), v(2)       !! initial state
         real(wp), intent(out), optional :: period !! its period (2 pi)
+        integer, intent(out), optional :: stat    !! FSYM_SUCCESS or FSYM_ERR_NOT_ELLIPTIC
+        if (present(stat)) stat = FSYM_SUCCESS
+        if (present(period)) period = 2.0_wp * FSYM_PI
+        if (.not. (e >= 0.0_wp .and. e < 1.0_wp)) then
+            if (present(stat)) stat = FSYM_ERR_NOT_ELLIPTIC
+            q = ieee_value(e, ieee_quiet_nan); v = q
+            return
+        end if
         q = [1.0_wp - e, 0.0_wp]
         v = [0.0_wp, sqrt((1.0_wp + e) / (1.0_wp - e))]
-        if (present(period)) period = 2.0_wp * FSYM_PI
     end subroutine kepler_elliptic_orbit
 
     pure real(wp) function opt_mu(mu)
@@ -221,7 +232,7 @@ contains
     subroutine kepler_model_gradient(self, q, a, g, stat)
         class(kepler_model_t), intent(inout) :: self  !! the model
         real(wp), intent(in), contiguous :: q(:, :)                !! positions (d, n)
-        real(wp), intent(in), contiguous :: a(:, :)   !! accelerations at q (used: g = 4 a/r^3)
+        real(wp), intent(in), contiguous :: a(:, :)   !! accelerations at q (g = 4 a/r^3)
         real(wp), intent(out), contiguous :: g(:, :)               !! gradient term (d, n)
         integer, intent(inout) :: stat                 !! unchanged: never fails itself
         call kepler_field_gradient(size(q, 1), size(q, 2), self%mu, q, a, g)
@@ -634,5 +645,21 @@ contains
         class(kepler_model_t), intent(in) :: self  !! the model
         kepler_model_has_potential = .true.
     end function kepler_model_has_potential
+
+    !> Largest local frequency squared, 2 mu / r^3 over the bodies (the oscillation frequency
+    !> of a radial perturbation scale at distance r), and the smallest r.
+    subroutine kepler_model_frequency(self, q, omega2, r, stat)
+        class(kepler_model_t), intent(inout) :: self  !! the model
+        real(wp), intent(in), contiguous :: q(:, :)   !! positions (d, n)
+        real(wp), intent(out) :: omega2               !! largest 2 mu / r^3
+        real(wp), intent(out) :: r                    !! smallest distance to the centre
+        integer, intent(inout) :: stat                !! unchanged: never fails itself
+        integer :: j
+        r = huge(r)
+        do j = 1, size(q, 2)
+            r = min(r, sqrt(sum(q(:, j)**2)))
+        end do
+        omega2 = 2.0_wp * abs(self%mu) / r**3
+    end subroutine kepler_model_frequency
 
 end module fsym_kepler

@@ -230,8 +230,10 @@ contains
             if (req == REQ_GRADIENT) slot = ks%ig
             if (req == REQ_FORCE_SHIFTED) slot = ks%iae
             accepted = fsym_all_finite(m, w(:, :, slot))
-            if (.not. accepted) then
-                call fail(FSYM_ERR_NONFINITE_FORCE); return
+            if (.not. accepted) then     ! the model's fault only where the state is finite
+                call fail(merge(FSYM_ERR_NONFINITE_FORCE, FSYM_ERR_NONFINITE_STATE, &
+                                fsym_all_finite(m, q) .and. fsym_all_finite(m, v)))
+                return
             end if
             if (req == REQ_GRADIENT) then
                 ks%have_g = .true.; ks%ng = ks%ng + 1

@@ -1,11 +1,13 @@
 !> Explicit interfaces of the F77-callable entry points in `fsym_legacy.f90`, for Fortran 90+
 !> callers that want their calls checked (`use fsym_legacy_api`). F77 callers need nothing.
 module fsym_legacy_api
-    use fsym_kinds, only: wp
+    use, intrinsic :: iso_fortran_env, only: int32
+    use fsym_kinds, only: wp, ik
     implicit none
     private
 
     public :: FSYMID, FSYMWK, FSYMIN, FSYMST, FSYMRC, FSYMNF, FSYMMS, FSYMPK, FSYMUP
+    public :: FSYMWL, FSYMIL, FSYMG0, FSYMNL, FSYMRS, FSYMCV, FSYMCL, FSYMCK, FSYMCR
     public :: fsym_legacy_accel, fsym_legacy_grad
 
     abstract interface
@@ -91,6 +93,88 @@ module fsym_legacy_api
             integer, intent(in) :: INFO                   !! status code
             character(len=*), intent(out) :: MSG          !! its text
         end subroutine FSYMMS
+        !> Work-array lengths for a method given by its label.
+        subroutine FSYMWL(NAME, ND, N, LRW, LIW, INFO)
+            implicit none
+            character(len=*), intent(in) :: NAME   !! method label
+            integer, intent(in) :: ND, N           !! dimensions, bodies
+            integer, intent(out) :: LRW, LIW, INFO !! lengths, status
+        end subroutine FSYMWL
+        !> Set up the work arrays for a method given by its label.
+        subroutine FSYMIL(NAME, ND, N, RW, LRW, IW, LIW, INFO)
+            import :: wp
+            implicit none
+            character(len=*), intent(in) :: NAME          !! method label
+            integer, intent(in) :: ND, N, LRW, LIW        !! sizes
+            real(wp), intent(inout) :: RW(LRW)            !! real work array
+            integer, intent(inout) :: IW(LIW)             !! integer work array
+            integer, intent(out) :: INFO                  !! status
+        end subroutine FSYMIL
+        !> The "no gradient term" marker routine (pass as GRAD to FSYMST).
+        subroutine FSYMG0(ND, N, X, A, G)
+            import :: wp
+            implicit none
+            integer, intent(in) :: ND, N                  !! dimensions, bodies
+            real(wp), intent(in) :: X(ND, N), A(ND, N)    !! positions, accelerations
+            real(wp), intent(out) :: G(ND, N)             !! set to zero
+        end subroutine FSYMG0
+        !> Evaluation counts as 64-bit integers.
+        subroutine FSYMNL(RW, LRW, NF, NG)
+            import :: wp, ik
+            implicit none
+            integer, intent(in) :: LRW                    !! length of RW
+            real(wp), intent(in) :: RW(LRW)               !! real work array
+            integer(ik), intent(out) :: NF, NG            !! counts
+        end subroutine FSYMNL
+        !> Forget the cached force (after changing the model's parameters).
+        subroutine FSYMRS(ND, N, X, V, RW, LRW, IW, LIW, INFO)
+            import :: wp
+            implicit none
+            integer, intent(in) :: ND, N                  !! dimensions, bodies
+            real(wp), intent(inout) :: X(ND, N), V(ND, N) !! state
+            integer, intent(in) :: LRW, LIW               !! lengths
+            real(wp), intent(inout) :: RW(LRW)            !! real work array
+            integer, intent(inout) :: IW(LIW)             !! integer work array
+            integer, intent(out) :: INFO                  !! status
+        end subroutine FSYMRS
+        !> Calling-convention check.
+        subroutine FSYMCV(ICHK, X)
+            import :: wp, int32
+            implicit none
+            integer(int32), intent(inout) :: ICHK(*)      !! (1, 2) on entry; verdict
+            real(wp), intent(in) :: X                     !! 1.5D0
+        end subroutine FSYMCV
+        !> Checkpoint length.
+        subroutine FSYMCL(ND, N, RW, LRW, IW, LIW, LCK, INFO)
+            import :: wp
+            implicit none
+            integer, intent(in) :: ND, N, LRW, LIW        !! dimensions, bodies, lengths
+            real(wp), intent(in) :: RW(LRW)               !! real work array
+            integer, intent(in) :: IW(LIW)                !! integer work array
+            integer, intent(out) :: LCK, INFO             !! checkpoint length, status
+        end subroutine FSYMCL
+        !> Write a checkpoint.
+        subroutine FSYMCK(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
+            import :: wp
+            implicit none
+            integer, intent(in) :: ND, N, LRW, LIW, LCK   !! dimensions, bodies, lengths
+            real(wp), intent(in) :: X(ND, N), V(ND, N)    !! state
+            real(wp), intent(in) :: RW(LRW)               !! real work array
+            integer, intent(in) :: IW(LIW)                !! integer work array
+            real(wp), intent(out) :: CK(LCK)              !! the checkpoint
+            integer, intent(out) :: INFO                  !! status
+        end subroutine FSYMCK
+        !> Restore from a checkpoint.
+        subroutine FSYMCR(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
+            import :: wp
+            implicit none
+            integer, intent(in) :: ND, N, LRW, LIW, LCK   !! dimensions, bodies, lengths
+            real(wp), intent(inout) :: X(ND, N), V(ND, N) !! state
+            real(wp), intent(inout) :: RW(LRW)            !! real work array
+            integer, intent(inout) :: IW(LIW)             !! integer work array
+            real(wp), intent(in) :: CK(LCK)               !! the checkpoint
+            integer, intent(out) :: INFO                  !! status
+        end subroutine FSYMCR
         !> Pack XH, YH, ZH into X(3,N).
         subroutine FSYMPK(N, XH, YH, ZH, X)
             import :: wp

@@ -11,7 +11,8 @@
 !>     IW(7)  steps completed by the last FSYMST call
 !>     IW(8:) the kernel state (LEGACY_NKI integers), then the op codes (NOP)
 module fsym_legacy_work
-    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_UNKNOWN_METHOD, FSYM_ERR_SHAPE
+    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_UNKNOWN_METHOD, FSYM_ERR_SHAPE, &
+                           FSYM_ERR_WORK_SIZE, FSYM_ERR_NOT_INITIALIZED
     use fsym_kinds, only: wp, ik
     use fsym_scheme, only: scheme_t
     use fsym_paper_schemes, only: fsym_scheme_by_name, fsym_catalogue, FSYM_NAME_LEN
@@ -44,11 +45,14 @@ module fsym_legacy_work
         procedure :: has_gradient => suspend_has_gradient  !! true
     end type suspend_model_t
 
-    public :: legacy_sizes, legacy_ok, legacy_load, legacy_store
+    public :: legacy_sizes, legacy_scheme_sizes, legacy_setup, legacy_ok, legacy_check
+    public :: legacy_load, legacy_store
 
 contains
 
     !> Lengths of the real and integer work arrays of catalogue method `meth` on (nd, n).
+    !> Computed in 64-bit integers: lengths that do not fit a default integer are an error
+    !> (FSYM_ERR_WORK_SIZE, lrw = liw = 0), never a wrapped-around number.
     subroutine legacy_sizes(meth, nd, n, lrw, liw, info)
         integer, intent(in) :: meth      !! catalogue index
         integer, intent(in) :: nd, n     !! dimensions, bodies
@@ -56,35 +60,94 @@ contains
         integer, intent(out) :: liw      !! integers needed
         integer, intent(out) :: info     !! status
         type(scheme_t) :: s
-        type(kernel_state_t) :: ks
         character(len=FSYM_NAME_LEN), allocatable :: cat(:)
         lrw = 0; liw = 0
         cat = fsym_catalogue()
         if (meth < 1 .or. meth > size(cat)) then
             info = FSYM_ERR_UNKNOWN_METHOD; return
         end if
+        call fsym_scheme_by_name(cat(meth), s, info)
+        if (info /= FSYM_SUCCESS) return
+        call legacy_scheme_sizes(s, nd, n, lrw, liw, info)
+    end subroutine legacy_sizes
+
+    !> Lengths of the work arrays of scheme `s` on (nd, n), in 64-bit arithmetic; lengths
+    !> beyond a default integer give FSYM_ERR_WORK_SIZE and lrw = liw = 0.
+    subroutine legacy_scheme_sizes(s, nd, n, lrw, liw, info)
+        type(scheme_t), intent(in) :: s  !! the scheme
+        integer, intent(in) :: nd, n     !! dimensions, bodies
+        integer, intent(out) :: lrw      !! reals needed
+        integer, intent(out) :: liw      !! integers needed
+        integer, intent(out) :: info     !! status
+        type(kernel_state_t) :: ks
+        integer(ik) :: r
+        lrw = 0; liw = 0
         if (nd < 1 .or. n < 1) then
             info = FSYM_ERR_SHAPE; return
         end if
-        call fsym_scheme_by_name(cat(meth), s, info)
-        if (info /= FSYM_SUCCESS) return
         call fsym_kernel_layout(s%op, .false., nd, n, ks)
-        lrw = LEGACY_KC - 1 + 2 * s%nop + nd * n * ks%nslot
+        r = LEGACY_KC - 1 + 2 * s%nop + int(nd, ik) * int(n, ik) * ks%nslot
+        if (r > huge(lrw)) then
+            info = FSYM_ERR_WORK_SIZE; return
+        end if
+        lrw = int(r)
         liw = LEGACY_KO - 1 + s%nop
-    end subroutine legacy_sizes
+        info = FSYM_SUCCESS
+    end subroutine legacy_scheme_sizes
+
+    !> Fill the work arrays for scheme `s` (catalogue index `meth`, 0 for a label outside
+    !> the catalogue) on (nd, n). Short arrays are rejected and nothing is written.
+    subroutine legacy_setup(s, meth, nd, n, rw, lrw, iw, liw, info)
+        type(scheme_t), intent(in) :: s          !! the scheme
+        integer, intent(in) :: meth              !! catalogue index or 0
+        integer, intent(in) :: nd, n             !! dimensions, bodies
+        integer, intent(in) :: lrw, liw          !! lengths of rw and iw
+        real(wp), intent(inout) :: rw(lrw)       !! real work array
+        integer, intent(inout) :: iw(liw)        !! integer work array
+        integer, intent(out) :: info             !! status
+        type(kernel_state_t) :: ks
+        integer :: need_r, need_i
+        call legacy_scheme_sizes(s, nd, n, need_r, need_i, info)
+        if (info /= FSYM_SUCCESS) return
+        if (lrw < need_r .or. liw < need_i) then
+            info = FSYM_ERR_WORK_SIZE; return
+        end if
+        iw(1:need_i) = 0
+        rw(1:need_r) = 0.0_wp
+        call fsym_kernel_layout(s%op, .false., nd, n, ks)
+        call legacy_store(ks, iw(8:LEGACY_KO - 1), rw(1:4))
+        iw(1) = LEGACY_MAGIC
+        iw(2) = nd; iw(3) = n; iw(4) = s%nop; iw(5) = ks%nslot; iw(6) = meth; iw(7) = 0
+        iw(LEGACY_KO:LEGACY_KO + s%nop - 1) = s%op
+        rw(LEGACY_KC:LEGACY_KC + s%nop - 1) = s%c
+        rw(LEGACY_KC + s%nop:LEGACY_KC + 2 * s%nop - 1) = s%u
+        info = FSYM_SUCCESS
+    end subroutine legacy_setup
 
     !> True when `iw` was set up by FSYMIN for (nd, n) and the lengths suffice.
     pure logical function legacy_ok(nd, n, lrw, liw, iw)
         integer, intent(in) :: nd, n, lrw, liw   !! dimensions and lengths given by the caller
         integer, intent(in) :: iw(liw)           !! integer work array
-        legacy_ok = .false.
-        if (liw < LEGACY_KO - 1) return
-        if (iw(1) /= LEGACY_MAGIC .or. iw(2) /= nd .or. iw(3) /= n) return
-        if (iw(4) < 1 .or. iw(5) < 1) return
-        if (liw < LEGACY_KO - 1 + iw(4)) return
-        if (lrw < LEGACY_KC - 1 + 2 * iw(4) + nd * n * iw(5)) return
-        legacy_ok = .true.
+        legacy_ok = legacy_check(nd, n, lrw, liw, iw) == FSYM_SUCCESS
     end function legacy_ok
+
+    !> Why the work arrays cannot be used for (nd, n): FSYM_ERR_NOT_INITIALIZED when `iw`
+    !> was not set up by FSYMIN (or is too short to tell), FSYM_ERR_SHAPE when it was set up
+    !> for other dimensions, FSYM_ERR_WORK_SIZE when LRW or LIW is shorter than it needs;
+    !> FSYM_SUCCESS when they are fine. Lengths are compared in 64-bit arithmetic.
+    pure integer function legacy_check(nd, n, lrw, liw, iw) result(info)
+        integer, intent(in) :: nd, n, lrw, liw   !! dimensions and lengths given by the caller
+        integer, intent(in) :: iw(liw)           !! integer work array
+        info = FSYM_ERR_NOT_INITIALIZED
+        if (liw < 7) return
+        if (iw(1) /= LEGACY_MAGIC .or. iw(4) < 1 .or. iw(5) < 1) return
+        info = FSYM_ERR_SHAPE
+        if (iw(2) /= nd .or. iw(3) /= n) return
+        info = FSYM_ERR_WORK_SIZE
+        if (liw < LEGACY_KO - 1 + iw(4)) return
+        if (int(lrw, ik) < LEGACY_KC - 1 + 2 * iw(4) + int(nd, ik) * int(n, ik) * iw(5)) return
+        info = FSYM_SUCCESS
+    end function legacy_check
 
     !> The kernel state kept in IW(8:) and RW(1:4).
     pure subroutine legacy_load(iw, rw, ks)

@@ -52,15 +52,23 @@ module fsym_status
         !! Reverse communication was resumed out of order.
     integer, parameter, public :: FSYM_ERR_LAPACK = 18
         !! A LAPACK routine returned a non-zero info.
-    integer, parameter, public :: FSYM_ERR_NO_MEMORY = 19
+    integer, parameter, public :: FSYM_ERR_BAD_ARGUMENT = 19
+        !! An argument is invalid: a step count <= 0, a NULL pointer from C, a label too long.
+    integer, parameter, public :: FSYM_ERR_STEP_TOO_LARGE = 20
+        !! The step-size guard refused a step: h omega beyond the method's stability limit.
+    integer, parameter, public :: FSYM_ERR_CHECKPOINT = 21
+        !! A checkpoint is corrupt, of another version, or does not fit this integrator.
+    integer, parameter, public :: FSYM_ERR_CONVENTION = 22
+        !! The F77 caller's integers are not default 4-byte integers (see FSYMCV).
+    integer, parameter, public :: FSYM_ERR_NO_MEMORY = 23
         !! An allocation failed (e.g. a method table too large for memory).
-    integer, parameter, public :: FSYM_ERR_LAST = 19
+    integer, parameter, public :: FSYM_ERR_LAST = 23
         !! Largest status code in use.
     integer, parameter, public :: FSYM_STATUS_MSG_LEN = 48
         !! Longest text of `fsym_status_message` (a buffer of this length always holds it).
 
     public :: fsym_status_message, fsym_status_message_len, fsym_report, fsym_pass
-    public :: fsym_int_text, fsym_int_text_len
+    public :: fsym_int_text, fsym_int_text_len, fsym_copy_printable
 
     !> The short text of each status code; the last entry is for unknown codes.
     character(len=FSYM_STATUS_MSG_LEN), parameter :: texts(0:FSYM_ERR_LAST + 1) = &
@@ -84,6 +92,10 @@ module fsym_status
          'force model provides no potential', &
          'reverse communication resumed out of order', &
          'LAPACK routine failed', &
+         'invalid argument', &
+         'step too large for this orbit (guard)', &
+         'checkpoint does not fit', &
+         'caller integers are not 4-byte integers', &
          'out of memory', &
          'unknown status code']
 
@@ -141,6 +153,7 @@ contains
                 errmsg(n + 3:) = detail(1:m)
             end if
         end if
+        if (present(errmsg)) call make_printable(errmsg)
         if (.not. present(stat)) then
             if (m > 0) then
                 write (error_unit, '(4a)') 'forward-symplectic: ', texts(text_index(code))(1:n), &
@@ -161,7 +174,7 @@ contains
         character(len=*), intent(inout), optional :: errmsg    !! receives `msg` on error
         if (present(stat)) stat = code
         if (code == FSYM_SUCCESS) return
-        if (present(errmsg)) errmsg = msg
+        if (present(errmsg)) call fsym_copy_printable(msg, errmsg)
         if (.not. present(stat)) then
             write (error_unit, '(2a)') 'forward-symplectic: ', trim(msg)
             error stop 1
@@ -189,6 +202,24 @@ contains
             int_text_len_ik = int_text_len_ik + 1
         end do
     end function int_text_len_ik
+
+    !> Copy a message, every byte outside printable ASCII (a user's label may hold any)
+    !> replaced by '?', so that a message is always printable text.
+    pure subroutine fsym_copy_printable(text, out)
+        character(len=*), intent(in) :: text       !! the message
+        character(len=*), intent(inout) :: out     !! receives it, blank-padded or cut
+        out = text
+        call make_printable(out)
+    end subroutine fsym_copy_printable
+
+    !> Replace, in place, every byte outside printable ASCII by '?'.
+    pure subroutine make_printable(out)
+        character(len=*), intent(inout) :: out     !! the text
+        integer :: k
+        do k = 1, len(out)
+            if (iachar(out(k:k)) < 32 .or. iachar(out(k:k)) > 126) out(k:k) = '?'
+        end do
+    end subroutine make_printable
 
     !> Decimal text of a default integer.
     pure function int_text_default(k) result(s)

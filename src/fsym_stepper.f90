@@ -73,6 +73,8 @@ module fsym_stepper
             !! for extensions: read or store the counters
         procedure :: note_stop
             !! for extensions: whether the observer stopped the run
+        procedure :: clock_state
+            !! for extensions (checkpoints): read or set the clock and the step count
     end type stepper_t
 
     !> Interface of `stepper_t%step`.
@@ -120,6 +122,11 @@ contains
         ke = 1
         if (present(every)) ke = max(1, every)
         self%stopped = .false.
+        if (nsteps < 1) then
+            call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'run: nsteps = '//fsym_int_text(nsteps)// &
+                             ' (must be >= 1)', stat, errmsg)
+            return
+        end if
         do k = 1, nsteps
             call self%step(model, q, v, h, st, msg, recorder)
             if (st /= FSYM_SUCCESS) exit
@@ -347,5 +354,21 @@ contains
         logical, intent(in) :: stopped           !! the observer asked to stop
         self%stopped = stopped
     end subroutine note_stop
+
+    !> For extensions (checkpoints): read (mode 0) or set (mode 1) the clock, time =
+    !> t_base + k_since h_now, and the step count, bit for bit.
+    subroutine clock_state(self, t_base, h_now, k_since, steps, mode)
+        class(stepper_t), intent(inout) :: self      !! the stepper
+        real(wp), intent(inout) :: t_base, h_now     !! clock base and step size
+        integer(ik), intent(inout) :: k_since, steps !! steps at h_now, steps since init
+        integer, intent(in) :: mode                  !! 0: read; 1: set
+        if (mode == 0) then
+            t_base = self%t_base; h_now = self%h_now; k_since = self%k_since
+            steps = self%nsteps
+        else
+            self%t_base = t_base; self%h_now = h_now; self%k_since = k_since
+            self%nsteps = steps
+        end if
+    end subroutine clock_state
 
 end module fsym_stepper

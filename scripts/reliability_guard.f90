@@ -1,0 +1,41 @@
+!> The step-size guard on the Kepler orbit of e = 0.9999 (issue 11), for doc/reliability.md:
+!> from apocentre, one period of 20000 fixed steps, each method unguarded and guarded.
+!> One line per method: `guard METHOD unguarded_status unguarded_dE guarded_status steps t r
+!> h*omega x* dE` (dE: relative energy error of the state returned). Built and run by
+!> scripts/reliability.sh against the library.
+program reliability_guard
+    use fsym
+    implicit none
+    character(len=3), parameter :: names(5) = [character(len=3) :: 'FR', 'A', 'A''', 'C', 'BM']
+    type(integrator_t) :: it
+    type(kepler_model_t) :: kep
+    real(wp) :: q0(2), v0(2), qa(2, 1), va(2, 1), q(2, 1), v(2, 1), period, h, e0, du, dg
+    real(wp) :: t, r, hw, xs
+    integer :: k, st, su, p1, p2
+    character(len=512) :: msg
+    call kepler_elliptic_orbit(0.9999_wp, q0, v0, period, st)
+    call kepler_exact(q0, v0, 0.5_wp * period, qa(:, 1), va(:, 1), st)
+    h = period / 20000.0_wp
+    e0 = kepler_energy(qa(:, 1), va(:, 1))
+    do k = 1, size(names)
+        q = qa; v = va
+        call it%init_by_name(trim(names(k)), kep, 2, 1, st)
+        call it%run(kep, q, v, h, 20000, su)
+        du = abs(kepler_energy(q(:, 1), v(:, 1)) - e0) / abs(e0)
+        q = qa; v = va
+        call it%init_by_name(trim(names(k)), kep, 2, 1, st)
+        call it%set_guard(kep, .true., st)
+        msg = ''
+        call it%run(kep, q, v, h, 20000, st, msg)
+        dg = abs(kepler_energy(q(:, 1), v(:, 1)) - e0) / abs(e0)
+        t = it%time(); r = -1.0_wp; hw = -1.0_wp; xs = -1.0_wp
+        p1 = index(msg, 'r = '); p2 = index(msg, ', h*omega = ')
+        if (p1 > 0 .and. p2 > p1) read (msg(p1 + 4:p2 - 1), *) r
+        p1 = p2; p2 = index(msg, ' > limit ')
+        if (p1 > 0 .and. p2 > p1) read (msg(p1 + 12:p2 - 1), *) hw
+        p1 = index(msg, '(x* = '); p2 = index(msg, ');')
+        if (p1 > 0 .and. p2 > p1) read (msg(p1 + 6:p2 - 1), *) xs
+        write (*, '(a,1x,a,1x,i0,1x,es10.3,1x,i0,1x,i0,5(1x,es11.4))') 'guard', trim(names(k)), &
+            su, du, st, it%steps(), t, r, hw, xs, dg
+    end do
+end program reliability_guard
