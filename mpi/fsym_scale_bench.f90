@@ -143,23 +143,28 @@ program fsym_scale_bench
                 tg(r + (k - 1) * reps) = scale_now() - t0
             end do
         end do
-        ! short calls (the first min(n, 128) targets against all bodies, one thread), many of
+        ! short calls (the first min(n, 128) targets against all bodies on one thread; for
+        ! tpair min(n, 1024) targets, 16 blocks, on 1 and 2 threads alternately), many of
         ! them: the cost per interaction with the least exposure to other processes' bursts
-        nsl = min(n, 128)
-        !$ call omp_set_num_threads(1)
-        do r = 1, size(tsl)
-            t0 = scale_now()
-            call fsym_nbody_accel_range(n, m, 1.0_wp, SCALE_EPS, q, 1, nsl, a(:, 1:nsl))
-            tsl(r) = scale_now() - t0
+        nsl = min(n, 128 * (1 + 7 * (nt - 1)))
+        do r = 1, size(tsl) / nt
+            do k = 1, nt
+                !$ call omp_set_num_threads(k)
+                t0 = scale_now()
+                call fsym_nbody_accel_range(n, m, 1.0_wp, SCALE_EPS, q, 1, nsl, a(:, 1:nsl))
+                tsl(r + (k - 1) * (size(tsl) / nt)) = scale_now() - t0
+            end do
         end do
         do k = 1, nt
             if (mode == 'tpair') nthreads = k
-            write (output_unit, '(a,a,i0,a,f0.3,a,f0.3,a,f0.1,a,f0.1,a,f0.3,a,i0)') trim(mode), &
+            r = size(tsl) / nt
+            write (output_unit, '(a,a,i0,a,f0.3,a,f0.3,a,f0.1,a,f0.1,a,f0.4,a,i0)') trim(mode), &
                 ' N=', n, ' ns/pair=', 1.0e9_wp * minval(ta((k - 1) * reps + 1:k * reps)) / pairs, &
                 ' gradient_ns/pair=', 1.0e9_wp * minval(tg((k - 1) * reps + 1:k * reps)) / pairs, &
                 ' spread%=', spread(ta((k - 1) * reps + 1:k * reps)), &
                 ' gradient_spread%=', spread(tg((k - 1) * reps + 1:k * reps)), &
-                ' slice_ns/interaction=', 1.0e9_wp * minval(tsl) / (real(nsl, wp) * (n - 1)), &
+                ' slice_ns/interaction=', &
+                1.0e9_wp * minval(tsl((k - 1) * r + 1:k * r)) / (real(nsl, wp) * (n - 1)), &
                 ' threads=', nthreads
         end do
     case ('step')

@@ -118,7 +118,7 @@ res=$out/results.txt
 for round in 1 2 3 4 5; do
     echo "load $(cut -d' ' -f1 /proc/loadavg)" >>"$res"
     for n in 1000 2000 4000 16000; do
-        reps=7
+        reps=15
         [ $n -ge 16000 ] && reps=3
         "$obench" mode=tpair n=$n reps=$reps >>"$res"
     done
