@@ -60,6 +60,8 @@ end module fsym_scale_bench_models
 !>         the same on 1 and 2 threads alternately (OpenMP build): two `tpair` lines
 !>     fsym_scale_bench mode=step n=N method=A steps=S reps=R
 !>         time per step of `integrator_t` on `nbody_model_t`
+!>     fsym_scale_bench mode=bound
+!>         the cost of one square root and one division alone (the bound of the kernel)
 !>     fsym_scale_bench mode=cost
 !>         force and gradient evaluations per step of the methods (`cost method=... nF=...
 !>         nG=...`), from which scripts/scale.sh derives the messages and bytes per step
@@ -182,6 +184,8 @@ program fsym_scale_bench
             trim(method), ' ranks=1 threads=', nthreads, ' us/step=', 1.0e6_wp * minval(ts), &
             ' spread%=', spread(ts)
         if (len_trim(fa) > 0) call scale_write_state(trim(fa), q, v, st)
+    case ('bound')
+        call bound_loop()
     case ('cost')
         do r = 1, size(cost_methods)
             call integ%init_by_name(trim(cost_methods(r)), model, 3, n, st)
@@ -196,6 +200,33 @@ program fsym_scale_bench
     end select
 
 contains
+
+    !> What one square root and one division per interaction cost alone: a vectorised loop
+    !> of f = f + G / (s2 sqrt(s2)) over 256 lanes (one lane changed per sweep, so nothing can
+    !> be hoisted); prints `bound ns/interaction=...` (minimum of 5 timings).
+    subroutine bound_loop()
+        integer, parameter :: nl = 256, nsweep = 20000
+        real(wp) :: s2(nl), f(nl), tb(5), gc
+        integer :: it, l, rr
+        do l = 1, nl
+            s2(l) = 1.0_wp + real(l, wp) / nl
+        end do
+        gc = 1.0_wp
+        f = 0.0_wp
+        do rr = 1, size(tb)
+            t0 = scale_now()
+            do it = 1, nsweep
+                !GCC$ vector
+                do l = 1, nl
+                    f(l) = f(l) + gc / (s2(l) * sqrt(s2(l)))
+                end do
+                s2(mod(it, nl) + 1) = s2(mod(it, nl) + 1) + 1.0e-9_wp
+            end do
+            tb(rr) = scale_now() - t0
+        end do
+        write (output_unit, '(a,f0.4,a,es10.3)') 'bound ns/interaction=', &
+            1.0e9_wp * minval(tb) / (real(nl, wp) * nsweep), ' checksum=', sum(f)
+    end subroutine bound_loop
 
     !> Spread of timings in per cent: max / min - 1.
     pure real(wp) function spread(t)

@@ -113,6 +113,7 @@ res=$out/results.txt
     echo "check mpi: bitwise identical to serial"
     "$sbench" mode=cost n=8
     cat "$pairs"
+    for round in 1 2 3; do "$sbench" mode=bound; done
 } >"$res"
 # threads: the library's pair kernel on 1 and 2 threads, alternating inside one process
 for round in 1 2 3 4 5; do
