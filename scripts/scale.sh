@@ -43,7 +43,9 @@ sbench=$build/serial/fsym_scale_bench
 obench=$build/omp/fsym_scale_bench
 sdrv=$build/serial/fsym_mpi_driver
 odrv=$build/omp/fsym_mpi_driver
-mpirun_np() { mpirun --oversubscribe -np "$@"; }
+# --bind-to none: OpenMPI binds each rank to one core by default (for up to 2 ranks), which
+# would put all OpenMP threads of a rank on that core
+mpirun_np() { mpirun --oversubscribe --bind-to none -np "$@"; }
 
 # ---- bitwise checks: end states of every run against the serial library's ----
 ncheck=501

@@ -62,20 +62,27 @@ def main(src, dst):
     w(f"Machine: {info.get('cpu', '?')}; {info.get('compiler', '')}. CMake Release build "
       '(`-O3`) with `-march=native -ffp-contract=off`. The machine is shared: load average '
       f"(1, 5, 15 min) {info.get('load_before', '?')} before the runs and "
-      f"{info.get('load_after', '?')} after; the 1-minute load average between rounds ranged "
-      f"over {min(info.get('loads', [0])):.2f} .. {max(info.get('loads', [0])):.2f} (2 would "
-      'mean both cores busy). Every figure is the minimum over 4 or 5 interleaved rounds '
-      '(and, for the pair benchmark, over several repetitions in each); the spread '
-      '(max/min - 1 over the rounds and repetitions) says how noisy it was.')
+      f"{info.get('load_after', '?')} after; between rounds the 1-minute load average was "
+      f"{min(info.get('loads', [0])):.2f} .. {max(info.get('loads', [0])):.2f}. It counts "
+      'these runs themselves (one or two workers, four in the 2x2 runs), so values well above '
+      '2 mean other processes competed for the two cores. Every figure is the minimum over 5 '
+      'interleaved rounds (and, for the pair benchmark, over several repetitions in each); '
+      'the spread (max/min - 1 over the rounds and repetitions) says how noisy it was.')
     w('')
     loads = info.get('loads', [0.0])
-    if max(loads) > 2.5:
+    if max(loads) > 4.0:
         w(f'**Load.** Other processes kept the two cores busy (1-minute load up to '
           f'{max(loads):.1f}): a run with two workers then waits for whichever is descheduled, '
           'so the two-worker timings below measure the contention as much as the code; the '
           'short-call columns, taken over many calls of a few milliseconds, are the least '
           'affected. Run `bash scripts/scale.sh` on a quiet machine for clean scaling figures.')
         w('')
+    def speedups(n):
+        whole = best(tpair[(n, 1)], 'ns/pair') / best(tpair[(n, 2)], 'ns/pair')
+        short = (best(tpair[(n, 1)], 'slice_ns/interaction')
+                 / best(tpair[(n, 2)], 'slice_ns/interaction'))
+        return f'N = {n}: {whole:.2f}x (short calls {short:.2f}x)'
+
     p4 = pair.get(4000)
     t2 = [n for n in sorted({k[0] for k in tpair}) if n >= 2000 and (n, 1) in tpair
           and (n, 2) in tpair]
@@ -86,10 +93,7 @@ def main(src, dst):
           '1.5, below what one square root and one division per interaction allow here '
           f'({2 * bound:.2f}, see below), so it is not met. Gradient term beside it: '
           f"{best(p4, 'gradient_ns/pair'):.2f} ns per pair. Two threads at N >= 2000 "
-          '(target 1.8x): ' + ', '.join(
-              f"N = {n}: {best(tpair[(n, 1)], 'ns/pair') / best(tpair[(n, 2)], 'ns/pair'):.2f}x"
-              f" (short calls {best(tpair[(n, 1)], 'slice_ns/interaction') / best(tpair[(n, 2)], 'slice_ns/interaction'):.2f}x)"
-              for n in t2) + '.')
+          '(target 1.8x): ' + ', '.join(speedups(n) for n in t2) + '.')
         w('')
     w('## Bitwise checks (`bash scripts/scale.sh --check`)')
     w('')
@@ -124,7 +128,7 @@ def main(src, dst):
       'more likely to be interrupted, and twice that figure is what a whole evaluation costs '
       'per pair on a quiet core. The hardware bound: one square root and one division per '
       f"interaction alone take {bound:.3f} ns on this processor (`fsym_scale_bench "
-      f"mode=bound`, a loop doing nothing else), so {2 * bound:.2f} ns per pair.')
+      f"mode=bound`, a loop doing nothing else), so {2 * bound:.2f} ns per pair.")
     w('')
     tint = best(pair[4000], 'slice_ns/interaction') * 1e-9 if 4000 in pair else 0.9e-9
 
@@ -211,8 +215,10 @@ def main(src, dst):
 
     w('## Measured scaling here (method A, ranks x threads)')
     w('')
-    w('Two cores: 1x2 and 2x1 use both, 2x2 runs four workers on two cores (oversubscribed, '
-      'expected no faster than 2 workers). Strong scaling: fixed N, speedup = t(1x1) / t. '
+    w('`mpirun --bind-to none` (OpenMPI binds each rank to one core by default, and the '
+      'threads of a rank would then share that core). Two cores: 1x2 and 2x1 use both, 2x2 '
+      'runs four workers on two cores (oversubscribed; waiting ranks and threads then take '
+      'time from working ones, worst at small N). Strong scaling: fixed N, speedup = t(1x1) / t. '
       'Messages per step counted by the model (gathers and reductions per step of rank 0, '
       'averaged over the run, which includes the first step\'s extra force).')
     w('')
