@@ -60,6 +60,8 @@ end module fsym_scale_bench_models
 !>         the same on 1 and 2 threads alternately (OpenMP build): two `tpair` lines
 !>     fsym_scale_bench mode=step n=N method=A steps=S reps=R
 !>         time per step of `integrator_t` on `nbody_model_t`
+!>     fsym_scale_bench mode=bound
+!>         the cost of one square root and one division alone (the bound of the kernel)
 !>     fsym_scale_bench mode=cost
 !>         force and gradient evaluations per step of the methods (`cost method=... nF=...
 !>         nG=...`), from which scripts/scale.sh derives the messages and bytes per step
@@ -143,23 +145,28 @@ program fsym_scale_bench
                 tg(r + (k - 1) * reps) = scale_now() - t0
             end do
         end do
-        ! short calls (the first min(n, 128) targets against all bodies, one thread), many of
+        ! short calls (the first min(n, 128) targets against all bodies on one thread; for
+        ! tpair min(n, 1024) targets, 16 blocks, on 1 and 2 threads alternately), many of
         ! them: the cost per interaction with the least exposure to other processes' bursts
-        nsl = min(n, 128)
-        !$ call omp_set_num_threads(1)
-        do r = 1, size(tsl)
-            t0 = scale_now()
-            call fsym_nbody_accel_range(n, m, 1.0_wp, SCALE_EPS, q, 1, nsl, a(:, 1:nsl))
-            tsl(r) = scale_now() - t0
+        nsl = min(n, 128 * (1 + 7 * (nt - 1)))
+        do r = 1, size(tsl) / nt
+            do k = 1, nt
+                !$ call omp_set_num_threads(k)
+                t0 = scale_now()
+                call fsym_nbody_accel_range(n, m, 1.0_wp, SCALE_EPS, q, 1, nsl, a(:, 1:nsl))
+                tsl(r + (k - 1) * (size(tsl) / nt)) = scale_now() - t0
+            end do
         end do
         do k = 1, nt
             if (mode == 'tpair') nthreads = k
-            write (output_unit, '(a,a,i0,a,f0.3,a,f0.3,a,f0.1,a,f0.1,a,f0.3,a,i0)') trim(mode), &
+            r = size(tsl) / nt
+            write (output_unit, '(a,a,i0,a,f0.3,a,f0.3,a,f0.1,a,f0.1,a,f0.4,a,i0)') trim(mode), &
                 ' N=', n, ' ns/pair=', 1.0e9_wp * minval(ta((k - 1) * reps + 1:k * reps)) / pairs, &
                 ' gradient_ns/pair=', 1.0e9_wp * minval(tg((k - 1) * reps + 1:k * reps)) / pairs, &
                 ' spread%=', spread(ta((k - 1) * reps + 1:k * reps)), &
                 ' gradient_spread%=', spread(tg((k - 1) * reps + 1:k * reps)), &
-                ' slice_ns/interaction=', 1.0e9_wp * minval(tsl) / (real(nsl, wp) * (n - 1)), &
+                ' slice_ns/interaction=', &
+                1.0e9_wp * minval(tsl((k - 1) * r + 1:k * r)) / (real(nsl, wp) * (n - 1)), &
                 ' threads=', nthreads
         end do
     case ('step')
@@ -177,6 +184,8 @@ program fsym_scale_bench
             trim(method), ' ranks=1 threads=', nthreads, ' us/step=', 1.0e6_wp * minval(ts), &
             ' spread%=', spread(ts)
         if (len_trim(fa) > 0) call scale_write_state(trim(fa), q, v, st)
+    case ('bound')
+        call bound_loop()
     case ('cost')
         do r = 1, size(cost_methods)
             call integ%init_by_name(trim(cost_methods(r)), model, 3, n, st)
@@ -191,6 +200,33 @@ program fsym_scale_bench
     end select
 
 contains
+
+    !> What one square root and one division per interaction cost alone: a vectorised loop
+    !> of f = f + G / (s2 sqrt(s2)) over 256 lanes (one lane changed per sweep, so nothing can
+    !> be hoisted); prints `bound ns/interaction=...` (minimum of 5 timings).
+    subroutine bound_loop()
+        integer, parameter :: nl = 256, nsweep = 20000
+        real(wp) :: s2(nl), f(nl), tb(5), gc
+        integer :: it, l, rr
+        do l = 1, nl
+            s2(l) = 1.0_wp + real(l, wp) / nl
+        end do
+        gc = 1.0_wp
+        f = 0.0_wp
+        do rr = 1, size(tb)
+            t0 = scale_now()
+            do it = 1, nsweep
+                !GCC$ vector
+                do l = 1, nl
+                    f(l) = f(l) + gc / (s2(l) * sqrt(s2(l)))
+                end do
+                s2(mod(it, nl) + 1) = s2(mod(it, nl) + 1) + 1.0e-9_wp
+            end do
+            tb(rr) = scale_now() - t0
+        end do
+        write (output_unit, '(a,f0.4,a,es10.3)') 'bound ns/interaction=', &
+            1.0e9_wp * minval(tb) / (real(nl, wp) * nsweep), ' checksum=', sum(f)
+    end subroutine bound_loop
 
     !> Spread of timings in per cent: max / min - 1.
     pure real(wp) function spread(t)

@@ -43,7 +43,9 @@ sbench=$build/serial/fsym_scale_bench
 obench=$build/omp/fsym_scale_bench
 sdrv=$build/serial/fsym_mpi_driver
 odrv=$build/omp/fsym_mpi_driver
-mpirun_np() { mpirun --oversubscribe -np "$@"; }
+# --bind-to none: OpenMPI binds each rank to one core by default (for up to 2 ranks), which
+# would put all OpenMP threads of a rank on that core
+mpirun_np() { mpirun --oversubscribe --bind-to none -np "$@"; }
 
 # ---- bitwise checks: end states of every run against the serial library's ----
 ncheck=501
@@ -113,12 +115,13 @@ res=$out/results.txt
     echo "check mpi: bitwise identical to serial"
     "$sbench" mode=cost n=8
     cat "$pairs"
+    for round in 1 2 3; do "$sbench" mode=bound; done
 } >"$res"
 # threads: the library's pair kernel on 1 and 2 threads, alternating inside one process
 for round in 1 2 3 4 5; do
     echo "load $(cut -d' ' -f1 /proc/loadavg)" >>"$res"
     for n in 1000 2000 4000 16000; do
-        reps=7
+        reps=15
         [ $n -ge 16000 ] && reps=3
         "$obench" mode=tpair n=$n reps=$reps >>"$res"
     done

@@ -169,7 +169,7 @@ contains
         bs = block_size(block)
         nbk = (i2 - i1 + bs) / bs
         grad = present(a)
-        !$omp parallel do schedule(static) default(shared) private(kb, ib, nb) &
+        !$omp parallel do schedule(dynamic) default(shared) private(kb, ib, nb) &
         !$omp& if(nbk > 1 .and. real(n, wp) * real(i2 - i1 + 1, wp) > FSYM_NBODY_OMP_MIN)
         do kb = 1, nbk
             ib = i1 + (kb - 1) * bs
