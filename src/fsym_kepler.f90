@@ -19,6 +19,8 @@ module fsym_kepler
     integer, parameter :: FIELD_BLOCK = 64
     ! fewer bodies than this (d = 2, 3) take one fused pass
     integer, parameter :: FIELD_FUSED_BELOW = 8
+    ! bodies per chunk of the OpenMP threads over independent bodies (when built with OpenMP)
+    integer, parameter :: OMP_CHUNK = 256
 
     !> Kepler force model: each column of q is a body attracted by mu at the origin.
     type, extends(force_model_t), public :: kepler_model_t
@@ -225,7 +227,17 @@ contains
         real(wp), intent(in), contiguous :: q(:, :)                !! positions (d, n)
         real(wp), intent(out), contiguous :: a(:, :)               !! accelerations (d, n)
         integer, intent(inout) :: stat                 !! unchanged: never fails itself
-        call kepler_field(size(q, 1), size(q, 2), self%mu, q, a)
+        integer :: j0, j1, d, n
+        d = size(q, 1); n = size(q, 2)
+        ! Threads (when built with OpenMP) over chunks of bodies: the bodies are independent
+        ! and every chunk runs the operations of `kepler_field`, so the bits do not depend on
+        ! the thread count.
+        !$omp parallel do schedule(static) private(j1) if(n >= 2 * OMP_CHUNK)
+        do j0 = 1, n, OMP_CHUNK
+            j1 = min(n, j0 + OMP_CHUNK - 1)
+            call kepler_field(d, j1 - j0 + 1, self%mu, q(:, j0:j1), a(:, j0:j1))
+        end do
+        !$omp end parallel do
     end subroutine kepler_model_acceleration
 
     !> Gradient term of every column: -4 mu^2 q/|q|^6.
@@ -235,7 +247,15 @@ contains
         real(wp), intent(in), contiguous :: a(:, :)   !! accelerations at q (g = 4 a/r^3)
         real(wp), intent(out), contiguous :: g(:, :)               !! gradient term (d, n)
         integer, intent(inout) :: stat                 !! unchanged: never fails itself
-        call kepler_field_gradient(size(q, 1), size(q, 2), self%mu, q, a, g)
+        integer :: j0, j1, d, n
+        d = size(q, 1); n = size(q, 2)
+        !$omp parallel do schedule(static) private(j1) if(n >= 2 * OMP_CHUNK)
+        do j0 = 1, n, OMP_CHUNK
+            j1 = min(n, j0 + OMP_CHUNK - 1)
+            call kepler_field_gradient(d, j1 - j0 + 1, self%mu, q(:, j0:j1), a(:, j0:j1), &
+                                       g(:, j0:j1))
+        end do
+        !$omp end parallel do
     end subroutine kepler_model_gradient
 
     !> Accelerations -mu q_j/|q_j|^3 of n independent bodies on explicit arrays: the one
@@ -481,7 +501,7 @@ contains
         integer(ik), intent(out) :: ndone
         real(wp), dimension(FIELD_BLOCK, 3) :: x, y, a, g, e, p
         real(wp) :: s, r, xs, shift
-        logical :: ha, hg, hx, ok
+        logical :: ha, hg, hx, ok, okall
         integer(ik) :: i, nf, ng
         integer :: d, n, j0, m, k, l
         d = ks%d; n = ks%n
@@ -496,10 +516,20 @@ contains
             end if
         end if
         w(:, :, ks%iq0) = q; w(:, :, ks%iv0) = v
-        ok = .true.
+        okall = .true.
         x = 0.0_wp; y = 0.0_wp; a = 0.0_wp; g = 0.0_wp; e = 0.0_wp; p = 0.0_wp
+        ha = ks%have_a; hg = ks%have_g; hx = ks%have_x; xs = ks%xshift
+        nf = ks%nf; ng = ks%ng
+        ! Threads (when built with OpenMP) over the blocks: each block takes all the steps on
+        ! its own bodies, so the bits do not depend on the thread count; every block ends with
+        ! the same cache flags and counts (the same stages, the same steps), taken from the
+        ! last one. A failing block is not written back; then all are undone below.
+        !$omp parallel do schedule(static) default(shared) reduction(.and.:okall) &
+        !$omp firstprivate(x, y, a, g, e, p) private(m, l, i, k, s, r, shift, ok) &
+        !$omp lastprivate(ha, hg, hx, xs, nf, ng) if(n >= 4 * FIELD_BLOCK)
         do j0 = 0, n - 1, FIELD_BLOCK
             m = min(FIELD_BLOCK, n - j0)
+            ok = .true.
             ha = ks%have_a; hg = ks%have_g; hx = ks%have_x; xs = ks%xshift
             nf = ks%nf; ng = ks%ng
             do l = 1, d
@@ -551,7 +581,8 @@ contains
                 ok = all(ieee_is_finite(x(1:m, 1:d))) .and. all(ieee_is_finite(y(1:m, 1:d)))
                 if (.not. ok) exit steps
             end do steps
-            if (.not. ok) exit
+            okall = okall .and. ok
+            if (.not. ok) cycle
             do l = 1, d
                 q(l, j0 + 1:j0 + m) = x(1:m, l); v(l, j0 + 1:j0 + m) = y(1:m, l)
                 if (ha) w(l, j0 + 1:j0 + m, ks%ia) = a(1:m, l)
@@ -560,7 +591,8 @@ contains
                 if (hx) w(l, j0 + 1:j0 + m, ks%iqe) = p(1:m, l)
             end do
         end do
-        if (.not. ok) then
+        !$omp end parallel do
+        if (.not. okall) then
             ! all or nothing: the entry state and its cache (same bits), nothing counted
             q = w(:, :, ks%iq0); v = w(:, :, ks%iv0)
             if (ks%have_a) call scaled_columns(d, n, -mu, q, q, w(:, :, ks%ia))
