@@ -93,10 +93,9 @@ def main():
         out.append("| %s | %s | %s | %d | %d | %d | %d | %d |"
                    % (face, klass, what, n, clear, intact, bad, crashes))
     out.append("| **all** | | | **%d** | **%d** | **%d** | **%d** | **%d** |\n" % tuple(total))
-    out.append("Not in these runs: AN labels with N >= 46342 (they overflow the coefficient "
-               "table and stop the host program until the label limits of issue 11 item 1 "
-               "are merged; `FSYM_FUZZ_OVERFLOW_LABELS=1` adds them to the Fortran label "
-               "class).\n")
+    out.append("The label classes include AN labels A46342 to A2147483647 (they would "
+               "overflow the coefficient table or exhaust memory): they are refused with a status "
+               "(`FSYM_FUZZ_OVERFLOW_LABELS=0` leaves them out).\n")
 
     out.append("## Suites\n")
     out.append("| suite | exit status |")
