@@ -18,7 +18,8 @@ module fsym_kernel
     use fsym_kernel_state, only: kernel_state_t, KERNEL_SUSPEND, REQ_NONE, REQ_FORCE, &
                                  REQ_GRADIENT, REQ_FORCE_SHIFTED
     use fsym_kernel_loops, only: fsym_all_finite, copy => fsym_loop_copy, &
-        shifted => fsym_loop_shifted, update => fsym_loop_update, update2 => fsym_loop_update2
+        shifted => fsym_loop_shifted, update => fsym_loop_update, update2 => fsym_loop_update2, &
+        same => fsym_loop_same
     implicit none
     private
 
@@ -115,7 +116,7 @@ contains
                 stat = FSYM_ERR_NONFINITE_STATE; return
             end if
             if (ks%have_a) then
-                if (any(q /= w(:, :, ks%iqlast))) call fsym_kernel_invalidate(ks)
+                if (.not. same(m, q, w(:, :, ks%iqlast))) call fsym_kernel_invalidate(ks)
             end if
         end if
         hs = h
@@ -180,7 +181,7 @@ contains
             ndone = ndone + 1
             if (ndone >= nsteps) exit steps
         end do steps
-        if (ks%have_a) w(:, :, ks%iqlast) = q
+        if (ks%have_a) call copy(m, q, w(:, :, ks%iqlast))
 
     contains
 

@@ -4,35 +4,25 @@
 !> finite x and NaN for NaN or Inf (an integer flag, so the loop still vectorises).
 module fsym_kernel_loops
     use fsym_kinds, only: wp
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     implicit none
     private
 
     public :: fsym_all_finite, fsym_loop_copy, fsym_loop_shifted, fsym_loop_update
-    public :: fsym_loop_update2
+    public :: fsym_loop_update2, fsym_loop_same
 
 contains
 
-    !> True when all m values are finite: one sum in 16 interleaved partial sums (it
-    !> vectorises), an element-wise look only when the sum is not finite.
+    !> True when all m values are finite (x - x is 0 for a finite x, NaN otherwise; an
+    !> integer flag, so the loop vectorises).
     pure logical function fsym_all_finite(m, x)
         integer, intent(in) :: m         !! number of values
         real(wp), intent(in) :: x(m)     !! values
-        real(wp) :: acc(16), s
-        integer :: i, mb
-        mb = m - mod(m, 16); s = 0.0_wp
-        if (mb > 0) then
-            acc = x(1:16)
-            do i = 17, mb, 16
-                acc = acc + x(i:i + 15)
-            end do
-            s = sum(acc)
-        end if
-        do i = mb + 1, m
-            s = s + x(i)
+        integer :: i, bad
+        bad = 0
+        do i = 1, m
+            bad = ior(bad, merge(1, 0, .not. (x(i) - x(i) == 0.0_wp)))
         end do
-        fsym_all_finite = abs(s) <= huge(s)
-        if (.not. fsym_all_finite) fsym_all_finite = all(ieee_is_finite(x))
+        fsym_all_finite = bad == 0
     end function fsym_all_finite
 
     !> y <- x.
@@ -42,6 +32,18 @@ contains
         real(wp), intent(out) :: y(m)    !! copy
         y = x
     end subroutine fsym_loop_copy
+
+    !> True when x = y value by value (a vectorised loop, no early exit).
+    pure logical function fsym_loop_same(m, x, y)
+        integer, intent(in) :: m                 !! number of values
+        real(wp), intent(in) :: x(m), y(m)       !! values to compare
+        integer :: j, differ
+        differ = 0
+        do j = 1, m
+            differ = ior(differ, merge(1, 0, x(j) /= y(j)))
+        end do
+        fsym_loop_same = differ == 0
+    end function fsym_loop_same
 
     !> z <- x + s y (the point of an extrapolated force).
     pure subroutine fsym_loop_shifted(m, x, s, y, z)
