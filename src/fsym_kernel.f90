@@ -19,7 +19,7 @@ module fsym_kernel
                                  REQ_GRADIENT, REQ_FORCE_SHIFTED
     use fsym_kernel_loops, only: fsym_all_finite, copy => fsym_loop_copy, &
         shifted => fsym_loop_shifted, update => fsym_loop_update, update2 => fsym_loop_update2, &
-        same => fsym_loop_same
+        same => fsym_loop_same, save => fsym_loop_save
     implicit none
     private
 
@@ -99,11 +99,11 @@ contains
         integer(ik), intent(in), optional :: step0               !! steps before this call
         real(wp), pointer, contiguous :: qp(:, :), a(:, :), g(:, :), qe(:, :), ae(:, :)
         integer(ik) :: i
-        integer :: k, m, mb
+        integer :: k, m
         real(wp) :: hs, shift
-        logical :: qok, vok, fresh, resumed
+        logical :: qok, vok, fresh, resumed, saved
 
-        ndone = 0; stat = FSYM_SUCCESS; m = ks%d * ks%n; mb = m - mod(m, 8)
+        ndone = 0; stat = FSYM_SUCCESS; m = ks%d * ks%n; saved = .false.
         qp => q; a => w(:, :, ks%ia); g => w(:, :, ks%ig)      ! descriptors made once
         qe => w(:, :, ks%iqe); ae => w(:, :, ks%iae)
         if (.not. ks%active) then
@@ -112,7 +112,10 @@ contains
             if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
                 stat = FSYM_ERR_BAD_STEP; return
             end if
-            if (.not. (fsym_all_finite(m, q) .and. fsym_all_finite(m, v))) then
+            ! the check of the state on entry saves it for the first step in the same loops
+            saved = save(m, q, w(:, :, ks%iq0))
+            if (saved) saved = save(m, v, w(:, :, ks%iv0))
+            if (.not. saved) then
                 stat = FSYM_ERR_NONFINITE_STATE; return
             end if
             if (ks%have_a) then
@@ -128,7 +131,10 @@ contains
                 if (.not. accepted(ks%req, .true.)) return
                 ks%active = .false.; ks%req = REQ_NONE
             else
-                call copy(m, q, w(:, :, ks%iq0)); call copy(m, v, w(:, :, ks%iv0))
+                if (.not. saved) then
+                    call copy(m, q, w(:, :, ks%iq0)); call copy(m, v, w(:, :, ks%iv0))
+                end if
+                saved = .false.
                 if (ks%comp) then
                     call copy(m, w(:, :, ks%iqc), w(:, :, ks%iqc0))
                     call copy(m, w(:, :, ks%ivc), w(:, :, ks%ivc0))

@@ -8,7 +8,7 @@ module fsym_kernel_loops
     private
 
     public :: fsym_all_finite, fsym_loop_copy, fsym_loop_shifted, fsym_loop_update
-    public :: fsym_loop_update2, fsym_loop_same
+    public :: fsym_loop_update2, fsym_loop_same, fsym_loop_save
 
 contains
 
@@ -32,6 +32,19 @@ contains
         real(wp), intent(out) :: y(m)    !! copy
         y = x
     end subroutine fsym_loop_copy
+
+    !> y <- x; true when all values are finite (the check and the copy in one loop).
+    logical function fsym_loop_save(m, x, y) result(ok)
+        integer, intent(in) :: m                 !! number of values
+        real(wp), intent(in) :: x(m)             !! values
+        real(wp), intent(out) :: y(m)            !! copy
+        integer :: j, bad
+        bad = 0
+        do j = 1, m
+            y(j) = x(j); bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp)))
+        end do
+        ok = bad == 0
+    end function fsym_loop_save
 
     !> True when x = y value by value (a vectorised loop, no early exit).
     pure logical function fsym_loop_same(m, x, y)
