@@ -2,7 +2,8 @@
 !> (`fsym-bench ratios`, `bash scripts/bench.sh --ratios`):
 !>
 !> - `calls_*`: the stages written out by hand on whole arrays (each update one plain loop
-!>   over all d*n values), making the same model calls as the library (`model%acceleration`, `model%gradient` through the abstract model, the
+!>   over all d*n values), making the same model calls as the library
+!>   (`model%acceleration`, `model%gradient` through the abstract model, the
 !>   first-same-as-last force kept), with no checks, no saved state, no counters;
 !> - `inl2_*`, `inl3_*`: n independent Kepler orbits (mu = 1) in d = 2 or 3 with the force
 !>   written out: steps outside, bodies inside (that loop vectorises), each body's state in

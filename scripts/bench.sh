@@ -66,8 +66,12 @@ cat >> "$tmp" <<'NOTES'
   the stage table inside, the model called directly through its type-bound procedures. It
   has no model-specific path. Per step it saves q and v (a failing step is undone bitwise),
   checks every force and the new state for NaN/Inf and keeps the first-same-as-last force;
-  the hand loops (`app/fsym_handloops.f90`) do none of this. `model=user` lines measure
-  that price: the user's model through the kernel against the same model calls by hand.
+  the hand loops (`app/fsym_handloops.f90`) do none of this. The checks cost no extra pass
+  over the arrays: each update tests the values it writes in the same vectorised loop (a
+  force used by a kick is caught there, since x + s y is NaN or Inf wherever y is), the
+  check of the state on entry is the copy that saves it (`src/fsym_kernel_loops.f90`).
+  `model=user` lines measure that price: the user's model through the kernel against the
+  same model calls by hand.
 - `model=builtin`: the library's `kepler_model_t` has a fused stepper of its own
   (`kepler_model_t%advance`, in `src/fsym_kepler.f90`, offered the steps by
   `integrator_t%run` before the kernel): one body on scalars, more bodies in blocks of 64 in

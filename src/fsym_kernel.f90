@@ -17,6 +17,9 @@ module fsym_kernel
                           EVAL_EXTRAPOLATED
     use fsym_kernel_state, only: kernel_state_t, KERNEL_SUSPEND, REQ_NONE, REQ_FORCE, &
                                  REQ_GRADIENT, REQ_FORCE_SHIFTED
+    use fsym_kernel_loops, only: fsym_all_finite, copy => fsym_loop_copy, &
+        shifted => fsym_loop_shifted, update => fsym_loop_update, update2 => fsym_loop_update2, &
+        same => fsym_loop_same, save => fsym_loop_save
     implicit none
     private
 
@@ -49,28 +52,6 @@ contains
         end if
     end subroutine fsym_kernel_layout
 
-    !> True when all m values are finite: one sum in 16 interleaved partial sums (it
-    !> vectorises), an element-wise look only when the sum is not finite.
-    pure logical function fsym_all_finite(m, x)
-        integer, intent(in) :: m         !! number of values
-        real(wp), intent(in) :: x(m)     !! values
-        real(wp) :: acc(16), s
-        integer :: i, mb
-        mb = m - mod(m, 16); s = 0.0_wp
-        if (mb > 0) then
-            acc = x(1:16)
-            do i = 17, mb, 16
-                acc = acc + x(i:i + 15)
-            end do
-            s = sum(acc)
-        end if
-        do i = mb + 1, m
-            s = s + x(i)
-        end do
-        fsym_all_finite = abs(s) <= huge(s)
-        if (.not. fsym_all_finite) fsym_all_finite = all(ieee_is_finite(x))
-    end function fsym_all_finite
-
     !> Forget every cached force (after changing the model's parameters between steps).
     pure subroutine fsym_kernel_invalidate(ks)
         type(kernel_state_t), intent(inout) :: ks  !! kernel state
@@ -97,50 +78,66 @@ contains
     !> state after `ndone` steps, and `ks%pc` names the failing stage (0: refused on entry,
     !> nop + 1: the new state). `stat = KERNEL_SUSPEND`: the model suspended the step
     !> (`ks%req`). `step0` numbers the steps for the recorder (step0 + 1 is the first).
+    !> Checks: every update tests its new values in the same loop. A force evaluated for a
+    !> kick is checked by that test: x + s y is NaN or Inf wherever y is (NaN * s is NaN for
+    !> any s, Inf * s is Inf, or NaN when s = 0), so a failed test looks at y itself to tell a
+    !> non-finite force (the stage fails) from a non-finite state (the step fails at its end,
+    !> as the last drift's and the last kick's tests say). Other forces are checked at once.
     subroutine fsym_kernel_run(op, c, u, model, ks, q, v, w, h, nsteps, ndone, stat, &
                                recorder, step0)
         integer, intent(in), contiguous :: op(:)                 !! op codes of the stages
         real(wp), intent(in), contiguous :: c(:), u(:)           !! stage coefficients
         class(force_model_t), intent(inout) :: model             !! force model
         type(kernel_state_t), intent(inout) :: ks                !! kernel state
-        real(wp), intent(inout) :: q(ks%d, ks%n), v(ks%d, ks%n)  !! state
-        real(wp), intent(inout) :: w(ks%d, ks%n, ks%nslot)       !! work array
+        real(wp), intent(inout), target :: q(ks%d, ks%n), v(ks%d, ks%n)  !! state
+        real(wp), intent(inout), target :: w(ks%d, ks%n, ks%nslot)       !! work array
         real(wp), intent(in) :: h                                !! step (for a new step)
         integer(ik), intent(in) :: nsteps                        !! steps to take
         integer(ik), intent(out) :: ndone                        !! steps completed
         integer, intent(out) :: stat                             !! status
         class(recorder_t), intent(inout), optional :: recorder   !! force-point recorder
         integer(ik), intent(in), optional :: step0               !! steps before this call
+        real(wp), pointer, contiguous :: qp(:, :), a(:, :), g(:, :), qe(:, :), ae(:, :)
         integer(ik) :: i
         integer :: k, m
         real(wp) :: hs, shift
+        logical :: qok, vok, fresh, resumed, saved
 
-        ndone = 0; stat = FSYM_SUCCESS; m = ks%d * ks%n
+        ndone = 0; stat = FSYM_SUCCESS; m = ks%d * ks%n; saved = .false.
+        qp => q; a => w(:, :, ks%ia); g => w(:, :, ks%ig)      ! descriptors made once
+        qe => w(:, :, ks%iqe); ae => w(:, :, ks%iae)
         if (.not. ks%active) then
             if (nsteps < 1) return
             ks%pc = 0
             if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
                 stat = FSYM_ERR_BAD_STEP; return
             end if
-            if (.not. (fsym_all_finite(m, q) .and. fsym_all_finite(m, v))) then
+            ! the check of the state on entry saves it for the first step in the same loops
+            saved = save(m, q, w(:, :, ks%iq0))
+            if (saved) saved = save(m, v, w(:, :, ks%iv0))
+            if (.not. saved) then
                 stat = FSYM_ERR_NONFINITE_STATE; return
             end if
             if (ks%have_a) then
-                if (any(q /= w(:, :, ks%iqlast))) call fsym_kernel_invalidate(ks)
+                if (.not. same(m, q, w(:, :, ks%iqlast))) call fsym_kernel_invalidate(ks)
             end if
         end if
         hs = h
         steps: do i = 1, max(nsteps, 1_ik)
-            if (ks%active) then
+            qok = .true.; vok = .true.; resumed = ks%active
+            if (resumed) then
                 ! resume: the caller has put the requested force into its slot
                 hs = ks%h
-                if (.not. accepted(ks%req)) return
+                if (.not. accepted(ks%req, .true.)) return
                 ks%active = .false.; ks%req = REQ_NONE
             else
-                call copy(q, w(:, :, ks%iq0)); call copy(v, w(:, :, ks%iv0))
+                if (.not. saved) then
+                    call copy(m, q, w(:, :, ks%iq0)); call copy(m, v, w(:, :, ks%iv0))
+                end if
+                saved = .false.
                 if (ks%comp) then
-                    call copy(w(:, :, ks%iqc), w(:, :, ks%iqc0))
-                    call copy(w(:, :, ks%ivc), w(:, :, ks%ivc0))
+                    call copy(m, w(:, :, ks%iqc), w(:, :, ks%iqc0))
+                    call copy(m, w(:, :, ks%ivc), w(:, :, ks%ivc0))
                 end if
                 ks%h = hs; ks%pc = 1
             end if
@@ -148,62 +145,89 @@ contains
                 ks%pc = k
                 select case (op(k))
                 case (OP_DRIFT)
-                    call update(q, w(:, :, ks%iqc), c(k) * hs, v)
+                    qok = update(ks%comp, m, q, w(:, :, ks%iqc), c(k) * hs, v)
                     ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
                 case (OP_KICK)
-                    if (.not. ready(REQ_FORCE)) return
-                    call update(v, w(:, :, ks%ivc), c(k) * hs, w(:, :, ks%ia))
+                    fresh = .not. ks%have_a
+                    if (fresh) then
+                        if (.not. evaluated(REQ_FORCE, .false.)) return
+                    end if
+                    vok = update(ks%comp, m, v, w(:, :, ks%ivc), c(k) * hs, a)
+                    if (.not. force_ok(a, .false.)) return
                 case (OP_GRAD_KICK)
                     if (.not. ready(REQ_FORCE)) return
-                    if (.not. ready(REQ_GRADIENT)) return
-                    call update2(v, w(:, :, ks%ivc), c(k) * hs, w(:, :, ks%ia), u(k) * hs**3, &
-                                 w(:, :, ks%ig))
+                    fresh = .not. ks%have_g
+                    if (fresh) then
+                        if (.not. evaluated(REQ_GRADIENT, .false.)) return
+                    end if
+                    vok = update2(ks%comp, m, v, w(:, :, ks%ivc), c(k) * hs, a, u(k) * hs**3, g)
+                    if (.not. force_ok(g, .true.)) return
                 case (OP_EXTRAP_KICK)
                     if (.not. ready(REQ_FORCE)) return
                     shift = u(k) * hs * hs
-                    if (.not. ks%have_x .or. ks%xshift /= shift) then
-                        w(:, :, ks%iqe) = q + shift * w(:, :, ks%ia)
+                    fresh = .not. ks%have_x .or. ks%xshift /= shift
+                    if (fresh) then
+                        call shifted(m, q, shift, a, qe)
                         ks%xshift = shift; ks%have_x = .false.
-                        if (.not. evaluated(REQ_FORCE_SHIFTED)) return
+                        if (.not. evaluated(REQ_FORCE_SHIFTED, .false.)) return
                     end if
-                    call update(v, w(:, :, ks%ivc), c(k) * hs, w(:, :, ks%iae))
+                    vok = update(ks%comp, m, v, w(:, :, ks%ivc), c(k) * hs, ae)
+                    if (.not. force_ok(ae, .false.)) return
                 case default
                     continue      ! a validated scheme has no other op codes
                 end select
             end do
             ks%pc = size(op) + 1
-            if (.not. (fsym_all_finite(m, q) .and. fsym_all_finite(m, v))) then
+            if (resumed) then     ! the tests of the stages before the suspension are gone
+                qok = fsym_all_finite(m, q); vok = fsym_all_finite(m, v)
+            end if
+            if (.not. (qok .and. vok)) then
                 call fail(FSYM_ERR_NONFINITE_STATE); return
             end if
             ndone = ndone + 1
             if (ndone >= nsteps) exit steps
         end do steps
-        if (ks%have_a) w(:, :, ks%iqlast) = q
+        if (ks%have_a) call copy(m, q, w(:, :, ks%iqlast))
 
     contains
 
-        !> a(q) (or g(q)) is cached or now evaluated; false when the step failed or suspended.
+        !> a(q) (or g(q)) is cached or now evaluated and checked; false when the step failed
+        !> or suspended.
         logical function ready(req)
             integer, intent(in) :: req
             ready = ks%have_a
             if (req == REQ_GRADIENT) ready = ks%have_g
-            if (.not. ready) ready = evaluated(req)
+            if (.not. ready) ready = evaluated(req, .true.)
         end function ready
 
-        !> Evaluate what `req` names, record it, accept it; false when the step failed
-        !> (undone) or was suspended.
-        logical function evaluated(req)
+        !> After a kick whose new v is not all finite: false (force uncounted, step undone)
+        !> when the force y evaluated for it (`fresh`) is not finite.
+        logical function force_ok(y, grad)
+            real(wp), intent(in) :: y(m)
+            logical, intent(in) :: grad
+            force_ok = vok .or. .not. fresh
+            if (force_ok) return
+            force_ok = all(ieee_is_finite(y))
+            if (force_ok) return
+            if (grad) ks%ng = ks%ng - 1
+            if (.not. grad) ks%nf = ks%nf - 1
+            call fail(FSYM_ERR_NONFINITE_FORCE)
+        end function force_ok
+
+        !> Evaluate what `req` names, record it, accept it (checked when `check`); false
+        !> when the step failed (undone) or was suspended.
+        logical function evaluated(req, check)
             integer, intent(in) :: req
+            logical, intent(in) :: check
             integer :: mst, kind
             mst = 0
             select case (req)
             case (REQ_FORCE)
-                call model%acceleration(q, w(:, :, ks%ia), mst); kind = EVAL_FORCE
+                call model%acceleration(qp, a, mst); kind = EVAL_FORCE
             case (REQ_GRADIENT)
-                call model%gradient(q, w(:, :, ks%ia), w(:, :, ks%ig), mst); kind = EVAL_GRADIENT
+                call model%gradient(qp, a, g, mst); kind = EVAL_GRADIENT
             case default
-                call model%acceleration(w(:, :, ks%iqe), w(:, :, ks%iae), mst)
-                kind = EVAL_EXTRAPOLATED
+                call model%acceleration(qe, ae, mst); kind = EVAL_EXTRAPOLATED
             end select
             evaluated = .false.
             if (mst == KERNEL_SUSPEND) then
@@ -218,22 +242,26 @@ contains
             if (mst /= 0) then
                 call fail(FSYM_ERR_MODEL); return
             end if
-            evaluated = accepted(req)
+            evaluated = accepted(req, check)
         end function evaluated
 
-        !> Check a force put into its slot and mark it valid; false (step undone) if it is
-        !> not finite.
-        logical function accepted(req)
+        !> Mark a force put into its slot valid and count it; when `check`, first check it
+        !> (false, step undone, if it is not finite).
+        logical function accepted(req, check)
             integer, intent(in) :: req
+            logical, intent(in) :: check
             integer :: slot
-            slot = ks%ia
-            if (req == REQ_GRADIENT) slot = ks%ig
-            if (req == REQ_FORCE_SHIFTED) slot = ks%iae
-            accepted = fsym_all_finite(m, w(:, :, slot))
-            if (.not. accepted) then     ! the model's fault only where the state is finite
-                call fail(merge(FSYM_ERR_NONFINITE_FORCE, FSYM_ERR_NONFINITE_STATE, &
-                                fsym_all_finite(m, q) .and. fsym_all_finite(m, v)))
-                return
+            accepted = .true.
+            if (check) then
+                slot = ks%ia
+                if (req == REQ_GRADIENT) slot = ks%ig
+                if (req == REQ_FORCE_SHIFTED) slot = ks%iae
+                accepted = fsym_all_finite(m, w(:, :, slot))
+                if (.not. accepted) then     ! the model's fault only where the state is finite
+                    call fail(merge(FSYM_ERR_NONFINITE_FORCE, FSYM_ERR_NONFINITE_STATE, &
+                                    fsym_all_finite(m, q) .and. fsym_all_finite(m, v)))
+                    return
+                end if
             end if
             if (req == REQ_GRADIENT) then
                 ks%have_g = .true.; ks%ng = ks%ng + 1
@@ -256,46 +284,6 @@ contains
             stat = code
         end subroutine fail
 
-        pure subroutine copy(x, y)
-            real(wp), intent(in) :: x(m)
-            real(wp), intent(out) :: y(m)
-            y = x
-        end subroutine copy
-
-        !> x <- x + s y, Kahan-compensated in e when `ks%comp`.
-        subroutine update(x, e, s, y)
-            real(wp), intent(inout) :: x(m), e(m)
-            real(wp), intent(in) :: s, y(m)
-            real(wp) :: inc, t
-            integer :: j
-            if (ks%comp) then
-                do j = 1, m
-                    inc = s * y(j) - e(j); t = x(j) + inc; e(j) = (t - x(j)) - inc; x(j) = t
-                end do
-            else
-                do j = 1, m
-                    x(j) = x(j) + s * y(j)
-                end do
-            end if
-        end subroutine update
-
-        !> x <- x + (s y + r z), Kahan-compensated in e when `ks%comp`.
-        subroutine update2(x, e, s, y, r, z)
-            real(wp), intent(inout) :: x(m), e(m)
-            real(wp), intent(in) :: s, y(m), r, z(m)
-            real(wp) :: inc, t
-            integer :: j
-            if (ks%comp) then
-                do j = 1, m
-                    inc = (s * y(j) + r * z(j)) - e(j); t = x(j) + inc; e(j) = (t - x(j)) - inc
-                    x(j) = t
-                end do
-            else
-                do j = 1, m
-                    x(j) = x(j) + (s * y(j) + r * z(j))
-                end do
-            end if
-        end subroutine update2
 
     end subroutine fsym_kernel_run
 

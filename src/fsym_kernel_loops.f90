@@ -1,0 +1,114 @@
+!> The array loops of the splitting kernel (`fsym_kernel`): the finite check, the saved
+!> state, the shifted point and the stage updates, each over all m = d*n values of a
+!> contiguous array. An update tests its new values in the same loop: x - x is 0 for a
+!> finite x and NaN for NaN or Inf (an integer flag, so the loop still vectorises).
+module fsym_kernel_loops
+    use fsym_kinds, only: wp
+    implicit none
+    private
+
+    public :: fsym_all_finite, fsym_loop_copy, fsym_loop_shifted, fsym_loop_update
+    public :: fsym_loop_update2, fsym_loop_same, fsym_loop_save
+
+contains
+
+    !> True when all m values are finite (x - x is 0 for a finite x, NaN otherwise; an
+    !> integer flag, so the loop vectorises).
+    pure logical function fsym_all_finite(m, x)
+        integer, intent(in) :: m         !! number of values
+        real(wp), intent(in) :: x(m)     !! values
+        integer :: i, bad
+        bad = 0
+        do i = 1, m
+            bad = ior(bad, merge(1, 0, .not. (x(i) - x(i) == 0.0_wp)))
+        end do
+        fsym_all_finite = bad == 0
+    end function fsym_all_finite
+
+    !> y <- x.
+    pure subroutine fsym_loop_copy(m, x, y)
+        integer, intent(in) :: m         !! number of values
+        real(wp), intent(in) :: x(m)     !! source
+        real(wp), intent(out) :: y(m)    !! copy
+        y = x
+    end subroutine fsym_loop_copy
+
+    !> y <- x; true when all values are finite (the check and the copy in one loop).
+    logical function fsym_loop_save(m, x, y) result(ok)
+        integer, intent(in) :: m                 !! number of values
+        real(wp), intent(in) :: x(m)             !! values
+        real(wp), intent(out) :: y(m)            !! copy
+        integer :: j, bad
+        bad = 0
+        do j = 1, m
+            y(j) = x(j); bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp)))
+        end do
+        ok = bad == 0
+    end function fsym_loop_save
+
+    !> True when x = y value by value (a vectorised loop, no early exit).
+    pure logical function fsym_loop_same(m, x, y)
+        integer, intent(in) :: m                 !! number of values
+        real(wp), intent(in) :: x(m), y(m)       !! values to compare
+        integer :: j, differ
+        differ = 0
+        do j = 1, m
+            differ = ior(differ, merge(1, 0, x(j) /= y(j)))
+        end do
+        fsym_loop_same = differ == 0
+    end function fsym_loop_same
+
+    !> z <- x + s y (the point of an extrapolated force).
+    pure subroutine fsym_loop_shifted(m, x, s, y, z)
+        integer, intent(in) :: m                 !! number of values
+        real(wp), intent(in) :: x(m), s, y(m)    !! point, shift factor, direction
+        real(wp), intent(out) :: z(m)            !! shifted point
+        z = x + s * y
+    end subroutine fsym_loop_shifted
+
+    !> x <- x + s y, Kahan-compensated in e when `comp`; true when the new x is all finite.
+    logical function fsym_loop_update(comp, m, x, e, s, y) result(ok)
+        logical, intent(in) :: comp                 !! compensated summation
+        integer, intent(in) :: m                    !! number of values
+        real(wp), intent(inout) :: x(m), e(m)       !! values, compensation terms
+        real(wp), intent(in) :: s, y(m)             !! factor, increment direction
+        real(wp) :: inc, t
+        integer :: j, bad
+        if (comp) then
+            do j = 1, m
+                inc = s * y(j) - e(j); t = x(j) + inc; e(j) = (t - x(j)) - inc; x(j) = t
+            end do
+            ok = fsym_all_finite(m, x); return
+        end if
+        bad = 0
+        do j = 1, m
+            x(j) = x(j) + s * y(j); bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp)))
+        end do
+        ok = bad == 0
+    end function fsym_loop_update
+
+    !> x <- x + (s y + r z), Kahan-compensated in e when `comp`; true when the new x is all
+    !> finite.
+    logical function fsym_loop_update2(comp, m, x, e, s, y, r, z) result(ok)
+        logical, intent(in) :: comp                 !! compensated summation
+        integer, intent(in) :: m                    !! number of values
+        real(wp), intent(inout) :: x(m), e(m)       !! values, compensation terms
+        real(wp), intent(in) :: s, y(m), r, z(m)    !! factors and directions
+        real(wp) :: inc, t
+        integer :: j, bad
+        if (comp) then
+            do j = 1, m
+                inc = (s * y(j) + r * z(j)) - e(j); t = x(j) + inc; e(j) = (t - x(j)) - inc
+                x(j) = t
+            end do
+            ok = fsym_all_finite(m, x); return
+        end if
+        bad = 0
+        do j = 1, m
+            x(j) = x(j) + (s * y(j) + r * z(j))
+            bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp)))
+        end do
+        ok = bad == 0
+    end function fsym_loop_update2
+
+end module fsym_kernel_loops
