@@ -211,7 +211,9 @@ contains
             if (force_ok) return
             if (grad) ks%ng = ks%ng - 1
             if (.not. grad) ks%nf = ks%nf - 1
-            call fail(FSYM_ERR_NONFINITE_FORCE)
+            ! the model's fault only where the state it was evaluated at is finite
+            call fail(merge(FSYM_ERR_NONFINITE_FORCE, FSYM_ERR_NONFINITE_STATE, &
+                            fsym_all_finite(m, q)))
         end function force_ok
 
         !> Evaluate what `req` names, record it, accept it (checked when `check`); false
