@@ -116,11 +116,11 @@ contains
         class(spring_chain_model_t), intent(inout) :: self  !! the chain
         real(wp), intent(in), contiguous :: q(:, :)                      !! positions (1, n)
         real(wp), intent(out), contiguous :: a(:, :)                     !! accelerations (1, n)
-        integer, intent(inout) :: stat                       !! 1 when the shape is wrong
+        integer, intent(inout) :: stat                       !! 1 when unset or the shape is wrong
         integer :: s, n
         real(wp) :: d, f
         n = size(q, 2)
-        if (size(q, 1) /= 1 .or. size(self%k) /= n + 1) then
+        if (.not. chain_ready(self, q)) then
             a = 0.0_wp; stat = 1; return
         end if
         a = 0.0_wp
@@ -139,11 +139,11 @@ contains
         real(wp), intent(in), contiguous :: q(:, :)                      !! positions (1, n)
         real(wp), intent(in), contiguous :: a(:, :)                      !! accelerations at q
         real(wp), intent(out), contiguous :: g(:, :)                     !! gradient term (1, n)
-        integer, intent(inout) :: stat                       !! 1 when the shape is wrong
+        integer, intent(inout) :: stat                       !! 1 when unset or the shape is wrong
         integer :: s, n
         real(wp) :: d, f
         n = size(q, 2)
-        if (size(q, 1) /= 1 .or. size(self%k) /= n + 1) then
+        if (.not. chain_ready(self, q)) then
             g = 0.0_wp; stat = 1; return
         end if
         g = 0.0_wp
@@ -156,6 +156,17 @@ contains
         end do
     end subroutine chain_gradient
 
+    !> The chain is set up (`fsym_linear_chain`, `fsym_fpu_chain`) and q has its shape (1, n):
+    !> an unset chain is refused with stat = 1, never used.
+    logical function chain_ready(self, q)
+        class(spring_chain_model_t), intent(in) :: self  !! the chain
+        real(wp), intent(in) :: q(:, :)                   !! positions
+        chain_ready = .false.
+        if (.not. (allocated(self%k) .and. allocated(self%b))) return
+        chain_ready = size(q, 1) == 1 .and. size(self%k) == size(q, 2) + 1 .and. &
+                      size(self%b) == size(q, 2) + 1
+    end function chain_ready
+
     !> Provided.
     logical function chain_has(self)
         class(spring_chain_model_t), intent(in) :: self  !! the chain
@@ -167,12 +178,12 @@ contains
         class(spring_chain_model_t), intent(inout) :: self  !! the chain
         real(wp), intent(in), contiguous :: q(:, :)                      !! positions (1, n)
         real(wp), intent(out) :: epot                        !! potential energy
-        integer, intent(inout) :: stat                       !! 1 when the shape is wrong
+        integer, intent(inout) :: stat                       !! 1 when unset or the shape is wrong
         integer :: s, n
         real(wp) :: d
         n = size(q, 2)
         epot = 0.0_wp
-        if (size(q, 1) /= 1 .or. size(self%k) /= n + 1) then
+        if (.not. chain_ready(self, q)) then
             stat = 1; return
         end if
         do s = 0, n

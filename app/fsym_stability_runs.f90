@@ -4,7 +4,8 @@
 !> energy and the oscillatory energies of the stiff springs.
 module fsym_stability_runs
     use fsym_kinds, only: wp, ik
-    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_NONFINITE_STATE
+    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_NONFINITE_STATE, FSYM_ERR_BAD_ARGUMENT, &
+                           fsym_report, fsym_int_text
     use fsym_stepper, only: stepper_t
     use fsym_methods, only: fsym_new_stepper
     use fsym_models, only: oscillator_model_t
@@ -203,6 +204,11 @@ contains
         integer(ik) :: k
         integer :: mst
         samples = 0.0_wp; nsamples = 0; max_dh = 0.0_wp; max_di = 0.0_wp
+        if (every <= 0_ik) then
+            call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'fsym_fpu_run: every must be >= 1, got '// &
+                             fsym_int_text(every), stat, errmsg)
+            return
+        end if
         call fsym_fpu_chain(m, omega, fpu, stat, errmsg)
         if (stat /= FSYM_SUCCESS) return
         call fsym_new_stepper(name, fpu, 1, 2 * m, s, stat, errmsg)
