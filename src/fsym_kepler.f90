@@ -9,6 +9,7 @@ module fsym_kepler
     use fsym_status
     use fsym_force, only: force_model_t
     use fsym_kernel_state, only: kernel_state_t
+    use fsym_kernel_loops, only: fsym_loop_save, fsym_loop_same, fsym_loop_copy
     use fsym_scheme, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
     implicit none
     private
@@ -510,16 +511,16 @@ contains
         integer :: d, n, j0, m, k, l
         d = ks%d; n = ks%n
         ndone = 0
-        ! a few steps do not pay for the set-up (copies, checks, block loads): the kernel
-        if (nsteps < 4) return
+        if (nsteps < 1) return
         if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) return
-        if (.not. (all(ieee_is_finite(q)) .and. all(ieee_is_finite(v)))) return
+        ! the entry state saved and checked in the same (vectorised) loops
+        if (.not. fsym_loop_save(d * n, q, w(:, :, ks%iq0))) return
+        if (.not. fsym_loop_save(d * n, v, w(:, :, ks%iv0))) return
         if (ks%have_a) then
-            if (any(q /= w(:, :, ks%iqlast))) then
+            if (.not. fsym_loop_same(d * n, q, w(:, :, ks%iqlast))) then
                 ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
             end if
         end if
-        w(:, :, ks%iq0) = q; w(:, :, ks%iv0) = v
         okall = .true.
         x = 0.0_wp; y = 0.0_wp; a = 0.0_wp; g = 0.0_wp; e = 0.0_wp; p = 0.0_wp
         ha = ks%have_a; hg = ks%have_g; hx = ks%have_x; xs = ks%xshift
@@ -611,7 +612,7 @@ contains
         end if
         ks%have_a = ha; ks%have_g = hg; ks%have_x = hx; ks%xshift = xs
         ks%nf = nf; ks%ng = ng
-        if (ha) w(:, :, ks%iqlast) = q
+        if (ha) call fsym_loop_copy(d * n, q, w(:, :, ks%iqlast))
         ndone = nsteps
     end subroutine advance_blocks
 
