@@ -538,13 +538,11 @@ contains
             chk = 0.0_wp
             ha = ks%have_a; hg = ks%have_g; hx = ks%have_x; xs = ks%xshift
             nf = ks%nf; ng = ks%ng
-            do l = 1, d
-                x(1:m, l) = q(l, j0 + 1:j0 + m); y(1:m, l) = v(l, j0 + 1:j0 + m)
-                if (ha) a(1:m, l) = w(l, j0 + 1:j0 + m, ks%ia)
-                if (hg) g(1:m, l) = w(l, j0 + 1:j0 + m, ks%ig)
-                if (hx) e(1:m, l) = w(l, j0 + 1:j0 + m, ks%iae)
-                if (hx) p(1:m, l) = w(l, j0 + 1:j0 + m, ks%iqe)
-            end do
+            call to_block(d, m, q(:, j0 + 1:j0 + m), x); call to_block(d, m, v(:, j0 + 1:j0 + m), y)
+            if (ha) call to_block(d, m, w(:, j0 + 1:j0 + m, ks%ia), a)
+            if (hg) call to_block(d, m, w(:, j0 + 1:j0 + m, ks%ig), g)
+            if (hx) call to_block(d, m, w(:, j0 + 1:j0 + m, ks%iae), e)
+            if (hx) call to_block(d, m, w(:, j0 + 1:j0 + m, ks%iqe), p)
             steps: do i = 1, nsteps
                 do k = 1, size(op)
                     if (op(k) /= OP_DRIFT .and. .not. ha) then
@@ -589,13 +587,12 @@ contains
             end do steps
             okall = okall .and. ok
             if (.not. ok) cycle
-            do l = 1, d
-                q(l, j0 + 1:j0 + m) = x(1:m, l); v(l, j0 + 1:j0 + m) = y(1:m, l)
-                if (ha) w(l, j0 + 1:j0 + m, ks%ia) = a(1:m, l)
-                if (hg) w(l, j0 + 1:j0 + m, ks%ig) = g(1:m, l)
-                if (hx) w(l, j0 + 1:j0 + m, ks%iae) = e(1:m, l)
-                if (hx) w(l, j0 + 1:j0 + m, ks%iqe) = p(1:m, l)
-            end do
+            call from_block(d, m, x, q(:, j0 + 1:j0 + m))
+            call from_block(d, m, y, v(:, j0 + 1:j0 + m))
+            if (ha) call from_block(d, m, a, w(:, j0 + 1:j0 + m, ks%ia))
+            if (hg) call from_block(d, m, g, w(:, j0 + 1:j0 + m, ks%ig))
+            if (hx) call from_block(d, m, e, w(:, j0 + 1:j0 + m, ks%iae))
+            if (hx) call from_block(d, m, p, w(:, j0 + 1:j0 + m, ks%iqe))
         end do
         !$omp end parallel do
         if (.not. okall) then
@@ -615,6 +612,40 @@ contains
         if (ha) call fsym_loop_copy(d * n, q, w(:, :, ks%iqlast))
         ndone = nsteps
     end subroutine advance_blocks
+
+    !> b(j, l) = z(l, j): m bodies (columns) into a block (rows), d = 2 or 3 written out.
+    pure subroutine to_block(d, m, z, b)
+        integer, intent(in) :: d, m
+        real(wp), intent(in) :: z(d, m)
+        real(wp), intent(inout) :: b(FIELD_BLOCK, 3)
+        integer :: j
+        if (d == 2) then
+            do j = 1, m
+                b(j, 1) = z(1, j); b(j, 2) = z(2, j)
+            end do
+        else
+            do j = 1, m
+                b(j, 1) = z(1, j); b(j, 2) = z(2, j); b(j, 3) = z(3, j)
+            end do
+        end if
+    end subroutine to_block
+
+    !> z(l, j) = b(j, l): a block back into m columns, d = 2 or 3 written out.
+    pure subroutine from_block(d, m, b, z)
+        integer, intent(in) :: d, m
+        real(wp), intent(in) :: b(FIELD_BLOCK, 3)
+        real(wp), intent(inout) :: z(d, m)
+        integer :: j
+        if (d == 2) then
+            do j = 1, m
+                z(1, j) = b(j, 1); z(2, j) = b(j, 2)
+            end do
+        else
+            do j = 1, m
+                z(1, j) = b(j, 1); z(2, j) = b(j, 2); z(3, j) = b(j, 3)
+            end do
+        end if
+    end subroutine from_block
 
     !> f = (cf / |r|^3) z for the m bodies of a block (the operations of `scaled_columns`);
     !> f * 0 added to `chk` (it becomes NaN where any f is not finite; no branch, vectorised).
