@@ -238,8 +238,12 @@ contains
                 call model%advance(self%sc%op, self%sc%c, self%sc%u, self%ks, q, v, self%w, &
                                    h, nsteps, nfused)
             end if
-            call fsym_kernel_run(self%sc%op, self%sc%c, self%sc%u, model, self%ks, q, v, &
-                                 self%w, h, nsteps - nfused, ndone, st, recorder, step0 + nfused)
+            st = FSYM_SUCCESS
+            if (nfused < nsteps .or. self%ks%active) then
+                call fsym_kernel_run(self%sc%op, self%sc%c, self%sc%u, model, self%ks, q, v, &
+                                     self%w, h, nsteps - nfused, ndone, st, recorder, &
+                                     step0 + nfused)
+            end if
         end if
         if (st == KERNEL_SUSPEND) then
             ! a model's stat that happens to be the kernel's suspend code is a failure here

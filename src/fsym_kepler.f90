@@ -9,6 +9,7 @@ module fsym_kepler
     use fsym_status
     use fsym_force, only: force_model_t
     use fsym_kernel_state, only: kernel_state_t
+    use fsym_kernel_loops, only: fsym_loop_save, fsym_loop_same, fsym_loop_copy
     use fsym_scheme, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
     implicit none
     private
@@ -372,13 +373,6 @@ contains
             return
         end if
         if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) return
-        if (.not. (all(ieee_is_finite(q)) .and. all(ieee_is_finite(v)))) return
-        if (ks%have_a) then
-            if (any(q(:, 1) /= w(:, 1, ks%iqlast))) then
-                ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
-            end if
-        end if
-        mu = self%mu
         x3 = 0.0_wp; y3 = 0.0_wp; a1 = 0.0_wp; a2 = 0.0_wp; a3 = 0.0_wp; g1 = 0.0_wp
         g2 = 0.0_wp; g3 = 0.0_wp; e1 = 0.0_wp; e2 = 0.0_wp; e3 = 0.0_wp; p1 = 0.0_wp
         p2 = 0.0_wp; p3 = 0.0_wp
@@ -386,6 +380,14 @@ contains
         if (d == 3) then
             x3 = q(3, 1); y3 = v(3, 1)
         end if
+        if (.not. (ieee_is_finite(x1) .and. ieee_is_finite(x2) .and. ieee_is_finite(x3) .and. &
+                   ieee_is_finite(y1) .and. ieee_is_finite(y2) .and. ieee_is_finite(y3))) return
+        if (ks%have_a) then
+            if (any(q(:, 1) /= w(:, 1, ks%iqlast))) then
+                ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
+            end if
+        end if
+        mu = self%mu
         ha = ks%have_a; hg = ks%have_g; hx = ks%have_x; xs = ks%xshift
         if (ha) call load(ks%ia, a1, a2, a3)
         if (hg) call load(ks%ig, g1, g2, g3)
@@ -490,6 +492,8 @@ contains
     !> `scaled_columns`. All or nothing: when any check fails, q, v and the cache are put
     !> back as they were on entry (the cached forces computed again, uncounted: the same
     !> bits) and no step is taken, so the kernel takes them all and reports the failure.
+    !> The checks add z * 0 for every force and state value z to a sum per body (0, or NaN
+    !> once any z is not finite): no branch in the vectorised loops, one test per step.
     subroutine advance_blocks(mu, op, c, u, ks, q, v, w, h, nsteps, ndone)
         real(wp), intent(in) :: mu
         integer, intent(in), contiguous :: op(:)
@@ -500,22 +504,23 @@ contains
         integer(ik), intent(in) :: nsteps
         integer(ik), intent(out) :: ndone
         real(wp), dimension(FIELD_BLOCK, 3) :: x, y, a, g, e, p
+        real(wp) :: chk(FIELD_BLOCK)   ! z * 0 summed over the checked values z: 0 or NaN
         real(wp) :: s, r, xs, shift
         logical :: ha, hg, hx, ok, okall
         integer(ik) :: i, nf, ng
         integer :: d, n, j0, m, k, l
         d = ks%d; n = ks%n
         ndone = 0
-        ! a few steps do not pay for the set-up (copies, checks, block loads): the kernel
-        if (nsteps < 4) return
+        if (nsteps < 1) return
         if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) return
-        if (.not. (all(ieee_is_finite(q)) .and. all(ieee_is_finite(v)))) return
+        ! the entry state saved and checked in the same (vectorised) loops
+        if (.not. fsym_loop_save(d * n, q, w(:, :, ks%iq0))) return
+        if (.not. fsym_loop_save(d * n, v, w(:, :, ks%iv0))) return
         if (ks%have_a) then
-            if (any(q /= w(:, :, ks%iqlast))) then
+            if (.not. fsym_loop_same(d * n, q, w(:, :, ks%iqlast))) then
                 ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
             end if
         end if
-        w(:, :, ks%iq0) = q; w(:, :, ks%iv0) = v
         okall = .true.
         x = 0.0_wp; y = 0.0_wp; a = 0.0_wp; g = 0.0_wp; e = 0.0_wp; p = 0.0_wp
         ha = ks%have_a; hg = ks%have_g; hx = ks%have_x; xs = ks%xshift
@@ -525,25 +530,23 @@ contains
         ! the same cache flags and counts (the same stages, the same steps), taken from the
         ! last one. A failing block is not written back; then all are undone below.
         !$omp parallel do schedule(static) default(shared) reduction(.and.:okall) &
-        !$omp firstprivate(x, y, a, g, e, p) private(m, l, i, k, s, r, shift, ok) &
+        !$omp firstprivate(x, y, a, g, e, p) private(m, l, i, k, s, r, shift, ok, chk) &
         !$omp lastprivate(ha, hg, hx, xs, nf, ng) if(n >= 4 * FIELD_BLOCK)
         do j0 = 0, n - 1, FIELD_BLOCK
             m = min(FIELD_BLOCK, n - j0)
             ok = .true.
+            chk = 0.0_wp
             ha = ks%have_a; hg = ks%have_g; hx = ks%have_x; xs = ks%xshift
             nf = ks%nf; ng = ks%ng
-            do l = 1, d
-                x(1:m, l) = q(l, j0 + 1:j0 + m); y(1:m, l) = v(l, j0 + 1:j0 + m)
-                if (ha) a(1:m, l) = w(l, j0 + 1:j0 + m, ks%ia)
-                if (hg) g(1:m, l) = w(l, j0 + 1:j0 + m, ks%ig)
-                if (hx) e(1:m, l) = w(l, j0 + 1:j0 + m, ks%iae)
-                if (hx) p(1:m, l) = w(l, j0 + 1:j0 + m, ks%iqe)
-            end do
+            call to_block(d, m, q(:, j0 + 1:j0 + m), x); call to_block(d, m, v(:, j0 + 1:j0 + m), y)
+            if (ha) call to_block(d, m, w(:, j0 + 1:j0 + m, ks%ia), a)
+            if (hg) call to_block(d, m, w(:, j0 + 1:j0 + m, ks%ig), g)
+            if (hx) call to_block(d, m, w(:, j0 + 1:j0 + m, ks%iae), e)
+            if (hx) call to_block(d, m, w(:, j0 + 1:j0 + m, ks%iqe), p)
             steps: do i = 1, nsteps
                 do k = 1, size(op)
                     if (op(k) /= OP_DRIFT .and. .not. ha) then
-                        call block_field(-mu, m, d, x, x, a, ok)
-                        if (.not. ok) exit steps
+                        call block_field(-mu, m, d, x, x, a, chk)
                         ha = .true.; nf = nf + 1
                     end if
                     select case (op(k))
@@ -556,8 +559,7 @@ contains
                         y(1:m, 1:d) = y(1:m, 1:d) + s * a(1:m, 1:d)
                     case (OP_GRAD_KICK)
                         if (.not. hg) then
-                            call block_field(4.0_wp * mu, m, d, x, a, g, ok)
-                            if (.not. ok) exit steps
+                            call block_field(4.0_wp * mu, m, d, x, a, g, chk)
                             hg = .true.; ng = ng + 1
                         end if
                         s = c(k) * h
@@ -568,8 +570,7 @@ contains
                         if (.not. hx .or. xs /= shift) then
                             p(1:m, 1:d) = x(1:m, 1:d) + shift * a(1:m, 1:d)
                             xs = shift
-                            call block_field(-mu, m, d, p, p, e, ok)
-                            if (.not. ok) exit steps
+                            call block_field(-mu, m, d, p, p, e, chk)
                             hx = .true.; nf = nf + 1
                         end if
                         s = c(k) * h
@@ -578,18 +579,20 @@ contains
                         continue      ! a validated scheme has no other op codes
                     end select
                 end do
-                ok = all(ieee_is_finite(x(1:m, 1:d))) .and. all(ieee_is_finite(y(1:m, 1:d)))
+                do l = 1, d
+                    chk(1:m) = chk(1:m) + (x(1:m, l) * 0.0_wp + y(1:m, l) * 0.0_wp)
+                end do
+                ok = all(chk(1:m) == 0.0_wp)
                 if (.not. ok) exit steps
             end do steps
             okall = okall .and. ok
             if (.not. ok) cycle
-            do l = 1, d
-                q(l, j0 + 1:j0 + m) = x(1:m, l); v(l, j0 + 1:j0 + m) = y(1:m, l)
-                if (ha) w(l, j0 + 1:j0 + m, ks%ia) = a(1:m, l)
-                if (hg) w(l, j0 + 1:j0 + m, ks%ig) = g(1:m, l)
-                if (hx) w(l, j0 + 1:j0 + m, ks%iae) = e(1:m, l)
-                if (hx) w(l, j0 + 1:j0 + m, ks%iqe) = p(1:m, l)
-            end do
+            call from_block(d, m, x, q(:, j0 + 1:j0 + m))
+            call from_block(d, m, y, v(:, j0 + 1:j0 + m))
+            if (ha) call from_block(d, m, a, w(:, j0 + 1:j0 + m, ks%ia))
+            if (hg) call from_block(d, m, g, w(:, j0 + 1:j0 + m, ks%ig))
+            if (hx) call from_block(d, m, e, w(:, j0 + 1:j0 + m, ks%iae))
+            if (hx) call from_block(d, m, p, w(:, j0 + 1:j0 + m, ks%iqe))
         end do
         !$omp end parallel do
         if (.not. okall) then
@@ -606,38 +609,69 @@ contains
         end if
         ks%have_a = ha; ks%have_g = hg; ks%have_x = hx; ks%xshift = xs
         ks%nf = nf; ks%ng = ng
-        if (ha) w(:, :, ks%iqlast) = q
+        if (ha) call fsym_loop_copy(d * n, q, w(:, :, ks%iqlast))
         ndone = nsteps
     end subroutine advance_blocks
 
+    !> b(j, l) = z(l, j): m bodies (columns) into a block (rows), d = 2 or 3 written out.
+    pure subroutine to_block(d, m, z, b)
+        integer, intent(in) :: d, m
+        real(wp), intent(in) :: z(d, m)
+        real(wp), intent(inout) :: b(FIELD_BLOCK, 3)
+        integer :: j
+        if (d == 2) then
+            do j = 1, m
+                b(j, 1) = z(1, j); b(j, 2) = z(2, j)
+            end do
+        else
+            do j = 1, m
+                b(j, 1) = z(1, j); b(j, 2) = z(2, j); b(j, 3) = z(3, j)
+            end do
+        end if
+    end subroutine to_block
+
+    !> z(l, j) = b(j, l): a block back into m columns, d = 2 or 3 written out.
+    pure subroutine from_block(d, m, b, z)
+        integer, intent(in) :: d, m
+        real(wp), intent(in) :: b(FIELD_BLOCK, 3)
+        real(wp), intent(inout) :: z(d, m)
+        integer :: j
+        if (d == 2) then
+            do j = 1, m
+                z(1, j) = b(j, 1); z(2, j) = b(j, 2)
+            end do
+        else
+            do j = 1, m
+                z(1, j) = b(j, 1); z(2, j) = b(j, 2); z(3, j) = b(j, 3)
+            end do
+        end if
+    end subroutine from_block
+
     !> f = (cf / |r|^3) z for the m bodies of a block (the operations of `scaled_columns`);
-    !> `ok` false when any f is not finite.
-    pure subroutine block_field(cf, m, d, r, z, f, ok)
+    !> f * 0 added to `chk` (it becomes NaN where any f is not finite; no branch, vectorised).
+    pure subroutine block_field(cf, m, d, r, z, f, chk)
         real(wp), intent(in) :: cf
         integer, intent(in) :: m, d
         real(wp), intent(in) :: r(FIELD_BLOCK, 3), z(FIELD_BLOCK, 3)
         real(wp), intent(inout) :: f(FIELD_BLOCK, 3)
-        logical, intent(out) :: ok
-        real(wp) :: t(FIELD_BLOCK)
-        integer :: j, l
+        real(wp), intent(inout) :: chk(FIELD_BLOCK)
+        real(wp) :: t
+        integer :: j
         if (d == 2) then
             do j = 1, m
-                t(j) = r(j, 1)**2 + r(j, 2)**2
+                t = r(j, 1)**2 + r(j, 2)**2
+                t = cf / (t * sqrt(t))
+                f(j, 1) = t * z(j, 1); f(j, 2) = t * z(j, 2)
+                chk(j) = chk(j) + (f(j, 1) * 0.0_wp + f(j, 2) * 0.0_wp)
             end do
         else
             do j = 1, m
-                t(j) = r(j, 1)**2 + r(j, 2)**2 + r(j, 3)**2
+                t = r(j, 1)**2 + r(j, 2)**2 + r(j, 3)**2
+                t = cf / (t * sqrt(t))
+                f(j, 1) = t * z(j, 1); f(j, 2) = t * z(j, 2); f(j, 3) = t * z(j, 3)
+                chk(j) = chk(j) + (f(j, 1) * 0.0_wp + f(j, 2) * 0.0_wp + f(j, 3) * 0.0_wp)
             end do
         end if
-        do j = 1, m
-            t(j) = cf / (t(j) * sqrt(t(j)))
-        end do
-        do l = 1, d
-            do j = 1, m
-                f(j, l) = t(j) * z(j, l)
-            end do
-        end do
-        ok = all(ieee_is_finite(f(1:m, 1:d)))
     end subroutine block_field
 
     !> f = (cf / |r|^3) z with |r|^2 = r1^2 + r2^2 + r3^2 (the operations of
