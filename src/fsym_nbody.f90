@@ -52,8 +52,12 @@ module fsym_nbody
     integer, parameter, public :: FSYM_NBODY_MAX_BLOCK = 256
     !> Default chunk of targets of the range routines (any chunk gives the same bits).
     integer, parameter :: TARGET_CHUNK = 64
-    !> Rows of a tile whose partial sums are added up together (independent chains).
+    !> Rows of a tile that go through the inner loop together.
     integer, parameter :: ROWS = 4
+    !> Classes of the partial sums c(i, J) for J after body i's block (see the module
+    !> description): a fixed part of the order, so a constant.
+    integer, parameter, public :: FSYM_NBODY_LANES = 8
+    integer, parameter :: LANES = FSYM_NBODY_LANES
     !> Largest work array (reals) that the model allocates for its threads: 3 n nb reals for
     !> n bodies in nb blocks (48 MB at n = 16000); above it the threads use the range routine.
     integer, parameter, public :: FSYM_NBODY_WORK_MAX = 2**25
@@ -176,17 +180,24 @@ contains
         real(wp), intent(out) :: out(3, i1:i2)       !! result for bodies i1..i2
         integer, intent(in), optional :: block       !! targets per chunk
         real(wp), intent(in), optional :: a(3, n)    !! accelerations (gradient term wanted)
-        integer :: nbk, kb, ib, nb, bs
+        integer :: nbk, kb, ib, nb, bs, k1, cpb, kk, sub
         logical :: grad
+        ! chunks of at most bs targets that never straddle two blocks of the kernel
         bs = TARGET_CHUNK
         if (present(block)) bs = max(1, min(FSYM_NBODY_MAX_BLOCK, block))
-        nbk = (i2 - i1 + bs) / bs
+        bs = min(bs, FSYM_NBODY_BLOCK)
+        cpb = (FSYM_NBODY_BLOCK + bs - 1) / bs
+        k1 = (i1 - 1) / FSYM_NBODY_BLOCK
+        nbk = ((i2 - 1) / FSYM_NBODY_BLOCK - k1 + 1) * cpb
         grad = present(a)
-        !$omp parallel do schedule(dynamic) default(shared) private(kb, ib, nb) &
+        !$omp parallel do schedule(dynamic) default(shared) private(kb, ib, nb, kk, sub) &
         !$omp& if(nbk > 1 .and. real(n, wp) * real(i2 - i1 + 1, wp) > FSYM_NBODY_OMP_MIN)
         do kb = 1, nbk
-            ib = i1 + (kb - 1) * bs
-            nb = min(bs, i2 - ib + 1)
+            kk = k1 + (kb - 1) / cpb
+            sub = mod(kb - 1, cpb)
+            ib = max(i1, kk * FSYM_NBODY_BLOCK + sub * bs + 1)
+            nb = min(i2, kk * FSYM_NBODY_BLOCK + min(FSYM_NBODY_BLOCK, (sub + 1) * bs)) - ib + 1
+            if (nb < 1) cycle
             if (grad) then
                 call gradient_targets(n, m, g, eps * eps, q, a, ib, nb, out(:, ib:ib + nb - 1))
             else
@@ -313,7 +324,7 @@ contains
         real(wp), intent(out) :: ci(3, FSYM_NBODY_BLOCK)         !! c(i, J), i in I
         real(wp), intent(out) :: cj(3, FSYM_NBODY_BLOCK)         !! c(j, I), j in J
         real(wp) :: tj(FSYM_NBODY_BLOCK, 4), acc(FSYM_NBODY_BLOCK, 3)
-        real(wp) :: t(FSYM_NBODY_BLOCK, 3, ROWS), s(3)
+        real(wp) :: t(FSYM_NBODY_BLOCK, 3), s(3)
         integer :: li, l, l0, r
         do l = 1, nj
             tj(l, 1:3) = q(:, jb + l - 1)
@@ -322,12 +333,14 @@ contains
         acc(1:nj, :) = 0.0_wp
         li = 1
         if (ib /= jb) then
-            ! off the diagonal, rows in groups: their partial sums are independent chains
-            do li = 1, ni - ROWS + 1, ROWS
-                call accel_rows(q(:, ib + li - 1:ib + li + ROWS - 2), &
-                                m(ib + li - 1:ib + li + ROWS - 2), g, e2, nj, tj, acc, t)
-                call add_rows(nj, t, ci(:, li:li + ROWS - 1))
+            ! off the diagonal: rows in groups, body i's partial sum in LANES classes
+            do li = 1, ni, ROWS
+                r = min(ROWS, ni - li + 1)
+                call accel_rows(r, q(:, ib + li - 1:ib + li + r - 2), &
+                                m(ib + li - 1:ib + li + r - 2), g, e2, nj, tj, acc, &
+                                ci(:, li:li + r - 1))
             end do
+            li = ni + 1
         end if
         do li = li, ni
             if (ib == jb) then
@@ -337,11 +350,11 @@ contains
                 l0 = 1
                 s = 0.0_wp
             end if
-            call accel_row(q(:, ib + li - 1), m(ib + li - 1), g, e2, l0, nj, tj, acc, t(:, :, 1))
+            call accel_row(q(:, ib + li - 1), m(ib + li - 1), g, e2, l0, nj, tj, acc, t)
             do l = l0, nj
-                s(1) = s(1) + t(l, 1, 1)
-                s(2) = s(2) + t(l, 2, 1)
-                s(3) = s(3) + t(l, 3, 1)
+                s(1) = s(1) + t(l, 1)
+                s(2) = s(2) + t(l, 2)
+                s(3) = s(3) + t(l, 3)
             end do
             ci(:, li) = s
         end do
@@ -350,59 +363,68 @@ contains
         end do
     end subroutine accel_tile
 
-    !> Inner loop of the symmetric acceleration kernel off the diagonal: ROWS bodies i (at
-    !> qi, masses mi), in ascending order, against all lanes of block J (as `accel_row`).
-    pure subroutine accel_rows(qi, mi, g, e2, nj, tj, acc, t)
-        real(wp), intent(in) :: qi(3, ROWS)                      !! positions of the bodies i
-        real(wp), intent(in) :: mi(ROWS)                         !! their masses
+    !> Inner loops of the symmetric acceleration kernel off the diagonal: nr <= ROWS bodies i
+    !> (at qi, masses mi), in ascending order, against all lanes of block J. Lane j's
+    !> accumulator receives -m_i f (q_j - q_i) for each i in turn (ascending i); body i's
+    !> terms m_j f (q_j - q_i) go to LANES partial sums by class mod(j - jb, LANES), each in
+    !> ascending j, which are then added in class order into c: the library's order for
+    !> c(i, J), J after body i's block (a branch-free vector loop over the classes).
+    pure subroutine accel_rows(nr, qi, mi, g, e2, nj, tj, acc, c)
+        integer, intent(in) :: nr                                !! bodies i
+        real(wp), intent(in) :: qi(3, nr)                        !! their positions
+        real(wp), intent(in) :: mi(nr)                           !! their masses
         real(wp), intent(in) :: g                                !! gravitational constant
         real(wp), intent(in) :: e2                               !! softening squared
         integer, intent(in) :: nj                                !! lanes
         real(wp), intent(in) :: tj(FSYM_NBODY_BLOCK, 4)          !! positions, masses of J
         real(wp), intent(inout) :: acc(FSYM_NBODY_BLOCK, 3)      !! lanes' partial sums
-        real(wp), intent(inout) :: t(FSYM_NBODY_BLOCK, 3, ROWS)  !! the bodies' terms
-        real(wp) :: dx, dy, dz, r2, f, ax, ay, az
-        integer :: l, r
-        !GCC$ vector
-        do l = 1, nj
-            ax = acc(l, 1)
-            ay = acc(l, 2)
-            az = acc(l, 3)
-            do r = 1, ROWS
+        real(wp), intent(out) :: c(3, nr)                        !! c(i, J) of the bodies i
+        real(wp) :: p(LANES, 3, ROWS), dx, dy, dz, r2, f
+        integer :: l0, l, k, r
+        p = 0.0_wp
+        do l0 = 0, nj - LANES, LANES
+            do r = 1, nr
+                !GCC$ vector
+                do k = 1, LANES
+                    l = l0 + k
+                    dx = tj(l, 1) - qi(1, r)
+                    dy = tj(l, 2) - qi(2, r)
+                    dz = tj(l, 3) - qi(3, r)
+                    r2 = dx * dx + dy * dy + dz * dz + e2
+                    f = g / (r2 * sqrt(r2))
+                    p(k, 1, r) = p(k, 1, r) + tj(l, 4) * f * dx
+                    p(k, 2, r) = p(k, 2, r) + tj(l, 4) * f * dy
+                    p(k, 3, r) = p(k, 3, r) + tj(l, 4) * f * dz
+                    acc(l, 1) = acc(l, 1) - mi(r) * f * dx
+                    acc(l, 2) = acc(l, 2) - mi(r) * f * dy
+                    acc(l, 3) = acc(l, 3) - mi(r) * f * dz
+                end do
+            end do
+        end do
+        l0 = nj - mod(nj, LANES)
+        do r = 1, nr
+            do k = 1, nj - l0
+                l = l0 + k
                 dx = tj(l, 1) - qi(1, r)
                 dy = tj(l, 2) - qi(2, r)
                 dz = tj(l, 3) - qi(3, r)
                 r2 = dx * dx + dy * dy + dz * dz + e2
                 f = g / (r2 * sqrt(r2))
-                t(l, 1, r) = tj(l, 4) * f * dx
-                t(l, 2, r) = tj(l, 4) * f * dy
-                t(l, 3, r) = tj(l, 4) * f * dz
-                ax = ax - mi(r) * f * dx
-                ay = ay - mi(r) * f * dy
-                az = az - mi(r) * f * dz
+                p(k, 1, r) = p(k, 1, r) + tj(l, 4) * f * dx
+                p(k, 2, r) = p(k, 2, r) + tj(l, 4) * f * dy
+                p(k, 3, r) = p(k, 3, r) + tj(l, 4) * f * dz
+                acc(l, 1) = acc(l, 1) - mi(r) * f * dx
+                acc(l, 2) = acc(l, 2) - mi(r) * f * dy
+                acc(l, 3) = acc(l, 3) - mi(r) * f * dz
             end do
-            acc(l, 1) = ax
-            acc(l, 2) = ay
-            acc(l, 3) = az
+        end do
+        c = 0.0_wp
+        do r = 1, nr
+            do k = 1, LANES
+                c(:, r) = c(:, r) + p(k, :, r)
+            end do
         end do
     end subroutine accel_rows
-
-    !> Partial sums of ROWS rows of terms, each over the lanes 1..nj in ascending order (the
-    !> rows' chains are independent, so they overlap).
-    pure subroutine add_rows(nj, t, s)
-        integer, intent(in) :: nj                                !! lanes
-        real(wp), intent(in) :: t(FSYM_NBODY_BLOCK, 3, ROWS)     !! terms
-        real(wp), intent(out) :: s(3, ROWS)                      !! sums
-        integer :: l, r
-        s = 0.0_wp
-        do l = 1, nj
-            do r = 1, ROWS
-                s(1, r) = s(1, r) + t(l, 1, r)
-                s(2, r) = s(2, r) + t(l, 2, r)
-                s(3, r) = s(3, r) + t(l, 3, r)
-            end do
-        end do
-    end subroutine add_rows
 
     !> Inner loop of the symmetric acceleration kernel: body i (at qi, mass mi) against lanes
     !> l0..l1 of block J; body i's terms into t, body j's subtracted from its lane.
@@ -538,7 +560,7 @@ contains
         integer, intent(in) :: nb           !! number of targets
         real(wp), intent(out) :: a(3, nb)   !! accelerations of the targets
         real(wp) :: ti(FSYM_NBODY_MAX_BLOCK, 3), acc(FSYM_NBODY_MAX_BLOCK, 3)
-        real(wp) :: part(FSYM_NBODY_MAX_BLOCK, 3)
+        real(wp) :: part(FSYM_NBODY_MAX_BLOCK, 3), p(FSYM_NBODY_MAX_BLOCK, 3, LANES)
         integer :: jb, k, l, self
         do l = 1, nb
             ti(l, :) = q(:, ib + l - 1)
@@ -546,15 +568,27 @@ contains
         acc(1:nb, :) = 0.0_wp
         do jb = 1, n, FSYM_NBODY_BLOCK
             part(1:nb, :) = 0.0_wp
-            do k = jb, min(n, jb + FSYM_NBODY_BLOCK - 1)
-                self = k - ib + 1
-                if (self < 1 .or. self > nb) then
-                    call accel_lanes(q(:, k), m(k), g, e2, 1, nb, ti, part)
-                else
-                    call accel_lanes(q(:, k), m(k), g, e2, 1, self - 1, ti, part)
-                    call accel_lanes(q(:, k), m(k), g, e2, self + 1, nb, ti, part)
-                end if
-            end do
+            if (jb > ib) then
+                ! a block after the targets' block: LANES class sums, added in class order
+                p(1:nb, :, :) = 0.0_wp
+                do k = jb, min(n, jb + FSYM_NBODY_BLOCK - 1)
+                    call accel_lanes(q(:, k), m(k), g, e2, 1, nb, ti, &
+                                     p(:, :, mod(k - jb, LANES) + 1))
+                end do
+                do k = 1, LANES
+                    part(1:nb, :) = part(1:nb, :) + p(1:nb, :, k)
+                end do
+            else
+                do k = jb, min(n, jb + FSYM_NBODY_BLOCK - 1)
+                    self = k - ib + 1
+                    if (self < 1 .or. self > nb) then
+                        call accel_lanes(q(:, k), m(k), g, e2, 1, nb, ti, part)
+                    else
+                        call accel_lanes(q(:, k), m(k), g, e2, 1, self - 1, ti, part)
+                        call accel_lanes(q(:, k), m(k), g, e2, self + 1, nb, ti, part)
+                    end if
+                end do
+            end if
             acc(1:nb, :) = acc(1:nb, :) + part(1:nb, :)
         end do
         do l = 1, nb
