@@ -13,9 +13,25 @@
 !> The energy is sum_i m_i |v_i|^2 / 2 + V with V = -sum_{i<j} G m_i m_j / s_ij.
 !>
 !> The explicit-shape procedures (`fsym_nbody_accel`, `fsym_nbody_gradient`,
-!> `fsym_nbody_potential`) are the arithmetic; the type only holds the parameters. Their
-!> loops are written in a documented order (i ascending, then j > i ascending) so a client
-!> that writes the same loop gets the same bits.
+!> `fsym_nbody_potential`) are the arithmetic; the type holds the parameters and a work array
+!> for its threads.
+!>
+!> The order of every body's sum (the library's order, whatever the routine, thread count or
+!> MPI rank count): the bodies form blocks of FSYM_NBODY_BLOCK (1..128, 129..256, ...); body
+!> i's result is ((0 + c(i, 1)) + c(i, 2)) + ... over the blocks J in ascending order, where
+!> the partial sum c(i, J) of the terms of the bodies k in J (k /= i) is taken
+!>
+!> - for J up to and including body i's own block: over k in ascending order;
+!> - for a block J after body i's own: in FSYM_NBODY_LANES classes
+!>   by mod(k - first body of J, FSYM_NBODY_LANES), each over k in ascending order, then the
+!>   class sums added in class order to 0.
+!>
+!> The symmetric kernel (`fsym_nbody_accel`, `fsym_nbody_gradient`, the model) evaluates
+!> each pair once, in tiles (I, J), I <= J: within a tile, body j's sum runs over i in
+!> ascending order (one vector lane per j) and body i's, for J after I, in the vector lanes
+!> themselves (the classes), so both vectorise without a branch. The per-target range
+!> routines (the MPI model's) take the same sums in the same order. With one block
+!> (n <= FSYM_NBODY_BLOCK) the order is plain ascending k.
 module fsym_nbody
     use fsym_kinds, only: wp
     use fsym_status, only: fsym_report, FSYM_SUCCESS, FSYM_ERR_SHAPE, FSYM_ERR_BAD_PARAMETER, &
@@ -474,14 +490,26 @@ contains
         real(wp), intent(out) :: cj(3, FSYM_NBODY_BLOCK)         !! c(j, I), j in J
         real(wp) :: tj(FSYM_NBODY_BLOCK, 7), acc(FSYM_NBODY_BLOCK, 3), t(FSYM_NBODY_BLOCK, 3)
         real(wp) :: s(3)
-        integer :: li, l, l0
+        integer :: li, l, l0, r
         do l = 1, nj
             tj(l, 1:3) = q(:, jb + l - 1)
             tj(l, 4:6) = a(:, jb + l - 1)
             tj(l, 7) = 2.0_wp * m(jb + l - 1)
         end do
         acc(1:nj, :) = 0.0_wp
-        do li = 1, ni
+        li = 1
+        if (ib /= jb) then
+            ! off the diagonal: rows in groups, body i's partial sum in LANES classes
+            do li = 1, ni, ROWS
+                r = min(ROWS, ni - li + 1)
+                call gradient_rows(r, q(:, ib + li - 1:ib + li + r - 2), &
+                                   a(:, ib + li - 1:ib + li + r - 2), &
+                                   m(ib + li - 1:ib + li + r - 2), g, e2, nj, tj, acc, &
+                                   ci(:, li:li + r - 1))
+            end do
+            li = ni + 1
+        end if
+        do li = li, ni
             if (ib == jb) then
                 l0 = li + 1
                 s = acc(li, :)
@@ -502,6 +530,84 @@ contains
             cj(:, l) = acc(l, :)
         end do
     end subroutine gradient_tile
+
+    !> Inner loops of the symmetric gradient kernel off the diagonal (as `accel_rows`): nr
+    !> bodies i against all lanes of block J; lane j's accumulator receives +2 m_i w for each
+    !> i in turn, body i's term -2 m_j w goes to its class sum of lane j.
+    pure subroutine gradient_rows(nr, qi, ai, mi, g, e2, nj, tj, acc, c)
+        integer, intent(in) :: nr                                !! bodies i
+        real(wp), intent(in) :: qi(3, nr)                        !! their positions
+        real(wp), intent(in) :: ai(3, nr)                        !! their accelerations
+        real(wp), intent(in) :: mi(nr)                           !! their masses
+        real(wp), intent(in) :: g                                !! gravitational constant
+        real(wp), intent(in) :: e2                               !! softening squared
+        integer, intent(in) :: nj                                !! lanes
+        real(wp), intent(in) :: tj(FSYM_NBODY_BLOCK, 7)          !! q, a, 2m of block J
+        real(wp), intent(inout) :: acc(FSYM_NBODY_BLOCK, 3)      !! lanes' partial sums
+        real(wp), intent(out) :: c(3, nr)                        !! c(i, J) of the bodies i
+        real(wp) :: p(LANES, 3, ROWS), m2(ROWS)
+        integer :: l0, k, r
+        p = 0.0_wp
+        m2(1:nr) = 2.0_wp * mi
+        do l0 = 0, nj - LANES, LANES
+            do r = 1, nr
+                call gradient_class_loop(qi(:, r), ai(:, r), m2(r), g, e2, l0, LANES, tj, acc, &
+                                         p(:, :, r))
+            end do
+        end do
+        l0 = nj - mod(nj, LANES)
+        do r = 1, nr
+            call gradient_class_loop(qi(:, r), ai(:, r), m2(r), g, e2, l0, nj - l0, tj, acc, &
+                                     p(:, :, r))
+        end do
+        c = 0.0_wp
+        do r = 1, nr
+            do k = 1, LANES
+                c(:, r) = c(:, r) + p(k, :, r)
+            end do
+        end do
+    end subroutine gradient_rows
+
+    !> Lanes l0+1..l0+nk (nk <= LANES) of `gradient_rows` for one body i: its terms into the
+    !> class sums p(1..nk), +2 m_i w onto the lanes.
+    pure subroutine gradient_class_loop(qi, ai, m2, g, e2, l0, nk, tj, acc, p)
+        real(wp), intent(in) :: qi(3)                            !! position of body i
+        real(wp), intent(in) :: ai(3)                            !! its acceleration
+        real(wp), intent(in) :: m2                               !! twice its mass
+        real(wp), intent(in) :: g                                !! gravitational constant
+        real(wp), intent(in) :: e2                               !! softening squared
+        integer, intent(in) :: l0                                !! lanes before the group
+        integer, intent(in) :: nk                                !! lanes in the group
+        real(wp), intent(in) :: tj(FSYM_NBODY_BLOCK, 7)          !! q, a, 2m of block J
+        real(wp), intent(inout) :: acc(FSYM_NBODY_BLOCK, 3)      !! lanes' partial sums
+        real(wp), intent(inout) :: p(LANES, 3)                   !! body i's class sums
+        real(wp) :: dx, dy, dz, dax, day, daz, r2, rinv2, f, xda, c, wx, wy, wz
+        integer :: k, l
+        !GCC$ vector
+        do k = 1, nk
+            l = l0 + k
+            dx = tj(l, 1) - qi(1)
+            dy = tj(l, 2) - qi(2)
+            dz = tj(l, 3) - qi(3)
+            r2 = dx * dx + dy * dy + dz * dz + e2
+            rinv2 = 1.0_wp / r2
+            f = g * rinv2 / sqrt(r2)
+            dax = ai(1) - tj(l, 4)
+            day = ai(2) - tj(l, 5)
+            daz = ai(3) - tj(l, 6)
+            xda = dx * dax + dy * day + dz * daz
+            c = 3.0_wp * xda * rinv2
+            wx = f * (dax - c * dx)
+            wy = f * (day - c * dy)
+            wz = f * (daz - c * dz)
+            p(k, 1) = p(k, 1) - tj(l, 7) * wx
+            p(k, 2) = p(k, 2) - tj(l, 7) * wy
+            p(k, 3) = p(k, 3) - tj(l, 7) * wz
+            acc(l, 1) = acc(l, 1) + m2 * wx
+            acc(l, 2) = acc(l, 2) + m2 * wy
+            acc(l, 3) = acc(l, 3) + m2 * wz
+        end do
+    end subroutine gradient_class_loop
 
     !> Inner loop of the symmetric gradient kernel: body i (position qi, acceleration ai,
     !> mass mi) against lanes l0..l1 of block J; 2 m_j w into t, +2 m_i w onto lane j.
@@ -636,7 +742,7 @@ contains
         integer, intent(in) :: nb           !! number of targets
         real(wp), intent(out) :: gt(3, nb)  !! gradient term of the targets
         real(wp) :: ti(FSYM_NBODY_MAX_BLOCK, 6), acc(FSYM_NBODY_MAX_BLOCK, 3)
-        real(wp) :: part(FSYM_NBODY_MAX_BLOCK, 3)
+        real(wp) :: part(FSYM_NBODY_MAX_BLOCK, 3), p(FSYM_NBODY_MAX_BLOCK, 3, LANES)
         integer :: jb, k, l, self
         do l = 1, nb
             ti(l, 1:3) = q(:, ib + l - 1)
@@ -645,15 +751,29 @@ contains
         acc(1:nb, :) = 0.0_wp
         do jb = 1, n, FSYM_NBODY_BLOCK
             part(1:nb, :) = 0.0_wp
-            do k = jb, min(n, jb + FSYM_NBODY_BLOCK - 1)
-                self = k - ib + 1
-                if (self < 1 .or. self > nb) then
-                    call gradient_lanes(q(:, k), a(:, k), m(k), g, e2, 1, nb, ti, part)
-                else
-                    call gradient_lanes(q(:, k), a(:, k), m(k), g, e2, 1, self - 1, ti, part)
-                    call gradient_lanes(q(:, k), a(:, k), m(k), g, e2, self + 1, nb, ti, part)
-                end if
-            end do
+            if (jb > ib) then
+                ! a block after the targets' block: LANES class sums, added in class order
+                p(1:nb, :, :) = 0.0_wp
+                do k = jb, min(n, jb + FSYM_NBODY_BLOCK - 1)
+                    call gradient_lanes(q(:, k), a(:, k), m(k), g, e2, 1, nb, ti, &
+                                        p(:, :, mod(k - jb, LANES) + 1))
+                end do
+                do k = 1, LANES
+                    part(1:nb, :) = part(1:nb, :) + p(1:nb, :, k)
+                end do
+            else
+                do k = jb, min(n, jb + FSYM_NBODY_BLOCK - 1)
+                    self = k - ib + 1
+                    if (self < 1 .or. self > nb) then
+                        call gradient_lanes(q(:, k), a(:, k), m(k), g, e2, 1, nb, ti, part)
+                    else
+                        call gradient_lanes(q(:, k), a(:, k), m(k), g, e2, 1, self - 1, ti, &
+                                            part)
+                        call gradient_lanes(q(:, k), a(:, k), m(k), g, e2, self + 1, nb, ti, &
+                                            part)
+                    end if
+                end do
+            end if
             acc(1:nb, :) = acc(1:nb, :) + part(1:nb, :)
         end do
         do l = 1, nb
