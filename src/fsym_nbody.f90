@@ -243,11 +243,7 @@ contains
             ni = min(FSYM_NBODY_BLOCK, n - ib + 1)
             do jb = ib, n, FSYM_NBODY_BLOCK
                 nj = min(FSYM_NBODY_BLOCK, n - jb + 1)
-                if (present(a)) then
-                    call gradient_tile(n, m, g, e2, q, a, ib, ni, jb, nj, ci, cj)
-                else
-                    call accel_tile(n, m, g, e2, q, ib, ni, jb, nj, ci, cj)
-                end if
+                call pair_tile(n, m, g, e2, q, ib, ni, jb, nj, ci, cj, a)
                 out(:, ib:ib + ni - 1) = out(:, ib:ib + ni - 1) + ci(:, 1:ni)
                 if (jb /= ib) out(:, jb:jb + nj - 1) = out(:, jb:jb + nj - 1) + cj(:, 1:nj)
             end do
@@ -307,27 +303,26 @@ contains
         jb = (lb - 1) * FSYM_NBODY_BLOCK + 1
         ni = min(FSYM_NBODY_BLOCK, n - ib + 1)
         nj = min(FSYM_NBODY_BLOCK, n - jb + 1)
-        if (present(a)) then
-            call gradient_tile(n, m, g, e2, q, a, ib, ni, jb, nj, ci, cj)
-        else
-            call accel_tile(n, m, g, e2, q, ib, ni, jb, nj, ci, cj)
-        end if
+        call pair_tile(n, m, g, e2, q, ib, ni, jb, nj, ci, cj, a)
         w(:, ib:ib + ni - 1, lb) = ci(:, 1:ni)
         if (lb /= kb) w(:, jb:jb + nj - 1, kb) = cj(:, 1:nj)
     end subroutine tile_to_work
 
-    !> One tile of the symmetric acceleration kernel: the pairs (i, j) with i in block I
-    !> (ib..ib+ni-1) and j in block J (jb..jb+nj-1), jb >= ib, each evaluated once. For each
-    !> i in ascending order, a branch-free vector loop over the lanes j gives the terms
-    !> m_j f (q_j - q_i) of body i, which are then added up in ascending j (the partial sum
-    !> c(i, J), into ci), and subtracts m_i f (q_j - q_i) from lane j's accumulator, which
-    !> thus adds up c(j, I) over i in ascending order (into cj). The subtracted term is
-    !> exactly body j's own term m_i f (q_i - q_j) negated (IEEE subtraction and
-    !> multiplication are sign-symmetric and s_ij = s_ji), so both partial sums have the bits
-    !> of a per-body loop. On the diagonal (ib = jb) only j > i is visited: body b's sum
-    !> starts from its lane (the terms of i < b, ascending) and continues with those of
-    !> j > b, ascending, and ends in ci; cj is not set.
-    pure subroutine accel_tile(n, m, g, e2, q, ib, ni, jb, nj, ci, cj)
+    !> One tile of the symmetric kernel: the pairs (i, j) with i in block I (ib..ib+ni-1)
+    !> and j in block J (jb..jb+nj-1), jb >= ib, each evaluated once; the acceleration, or
+    !> with `a` given the gradient term. The bodies j are vector lanes; for each i in
+    !> ascending order a branch-free vector loop evaluates f and subtracts m_i f (q_j - q_i)
+    !> from lane j's accumulator, which thus adds up body j's partial sum c(j, I) over i in
+    !> ascending order (into cj): the subtracted term is exactly body j's own term
+    !> m_i f (q_i - q_j) negated (IEEE subtraction and multiplication are sign-symmetric and
+    !> s_ij = s_ji). Off the diagonal, body i's terms m_j f (q_j - q_i) go to its LANES class
+    !> sums (lane j's class), added in class order into c(i, J) (into ci). On the diagonal
+    !> (ib = jb) only j > i is visited and body b's sum, in ascending order, starts from its
+    !> lane (the terms of i < b) and continues with the terms of j > b (into ci; cj unused).
+    !> For the gradient term: x = q_j - q_i, da = a_i - a_j, w = f (da - (3 x.da / s2) x),
+    !> f = G / s2 / s; body i's term is -2 m_j w, body j's +2 m_i w (its own term with x and
+    !> da negated, so w is).
+    pure subroutine pair_tile(n, m, g, e2, q, ib, ni, jb, nj, ci, cj, a)
         integer, intent(in) :: n                                 !! number of bodies
         real(wp), intent(in) :: m(n)                             !! masses
         real(wp), intent(in) :: g                                !! gravitational constant
@@ -339,45 +334,57 @@ contains
         integer, intent(in) :: nj                                !! bodies in block J
         real(wp), intent(out) :: ci(3, FSYM_NBODY_BLOCK)         !! c(i, J), i in I
         real(wp), intent(out) :: cj(3, FSYM_NBODY_BLOCK)         !! c(j, I), j in J
-        real(wp) :: tj(FSYM_NBODY_BLOCK, 4), acc(FSYM_NBODY_BLOCK, 3)
+        real(wp), intent(in), optional :: a(3, n)                !! accelerations at q
+        real(wp) :: tj(FSYM_NBODY_BLOCK, 7), acc(FSYM_NBODY_BLOCK, 3)
         real(wp) :: t(FSYM_NBODY_BLOCK, 3), s(3)
-        integer :: li, l, l0, r
+        integer :: li, l, r, i1, i2
+        ! block J in lanes: positions, then the mass (acceleration) or a and 2m (gradient)
         do l = 1, nj
             tj(l, 1:3) = q(:, jb + l - 1)
-            tj(l, 4) = m(jb + l - 1)
+            if (present(a)) then
+                tj(l, 4:6) = a(:, jb + l - 1)
+                tj(l, 7) = 2.0_wp * m(jb + l - 1)
+            else
+                tj(l, 4) = m(jb + l - 1)
+            end if
         end do
         acc(1:nj, :) = 0.0_wp
-        li = 1
         if (ib /= jb) then
             ! off the diagonal: rows in groups, body i's partial sum in LANES classes
             do li = 1, ni, ROWS
                 r = min(ROWS, ni - li + 1)
-                call accel_rows(r, q(:, ib + li - 1:ib + li + r - 2), &
-                                m(ib + li - 1:ib + li + r - 2), g, e2, nj, tj, acc, &
-                                ci(:, li:li + r - 1))
+                i1 = ib + li - 1
+                i2 = i1 + r - 1
+                if (present(a)) then
+                    call gradient_rows(r, q(:, i1:i2), a(:, i1:i2), m(i1:i2), g, e2, nj, tj, &
+                                       acc, ci(:, li:li + r - 1))
+                else
+                    call accel_rows(r, q(:, i1:i2), m(i1:i2), g, e2, nj, tj(:, 1:4), acc, &
+                                    ci(:, li:li + r - 1))
+                end if
             end do
-            li = ni + 1
-        end if
-        do li = li, ni
-            if (ib == jb) then
-                l0 = li + 1
+        else
+            ! on the diagonal, row by row: body li's sum starts from its lane
+            do li = 1, ni
+                i1 = ib + li - 1
+                if (present(a)) then
+                    call gradient_row(q(:, i1), a(:, i1), m(i1), g, e2, li + 1, nj, tj, acc, t)
+                else
+                    call accel_row(q(:, i1), m(i1), g, e2, li + 1, nj, tj(:, 1:4), acc, t)
+                end if
                 s = acc(li, :)
-            else
-                l0 = 1
-                s = 0.0_wp
-            end if
-            call accel_row(q(:, ib + li - 1), m(ib + li - 1), g, e2, l0, nj, tj, acc, t)
-            do l = l0, nj
-                s(1) = s(1) + t(l, 1)
-                s(2) = s(2) + t(l, 2)
-                s(3) = s(3) + t(l, 3)
+                do l = li + 1, nj
+                    s(1) = s(1) + t(l, 1)
+                    s(2) = s(2) + t(l, 2)
+                    s(3) = s(3) + t(l, 3)
+                end do
+                ci(:, li) = s
             end do
-            ci(:, li) = s
-        end do
+        end if
         do l = 1, nj
             cj(:, l) = acc(l, :)
         end do
-    end subroutine accel_tile
+    end subroutine pair_tile
 
     !> Inner loops of the symmetric acceleration kernel off the diagonal: nr <= ROWS bodies i
     !> (at qi, masses mi), in ascending order, against all lanes of block J. Lane j's
@@ -395,7 +402,7 @@ contains
         real(wp), intent(in) :: tj(FSYM_NBODY_BLOCK, 4)          !! positions, masses of J
         real(wp), intent(inout) :: acc(FSYM_NBODY_BLOCK, 3)      !! lanes' partial sums
         real(wp), intent(out) :: c(3, nr)                        !! c(i, J) of the bodies i
-        real(wp) :: p(LANES, 3, ROWS), dx, dy, dz, r2, f
+        real(wp) :: p(LANES, 3, ROWS), t(FSYM_NBODY_BLOCK, 3), dx, dy, dz, r2, f
         integer :: l0, l, k, r
         p = 0.0_wp
         do l0 = 0, nj - LANES, LANES
@@ -417,30 +424,28 @@ contains
                 end do
             end do
         end do
+        ! the last lanes (fewer than LANES): the same terms from the row loop
         l0 = nj - mod(nj, LANES)
         do r = 1, nr
-            do k = 1, nj - l0
-                l = l0 + k
-                dx = tj(l, 1) - qi(1, r)
-                dy = tj(l, 2) - qi(2, r)
-                dz = tj(l, 3) - qi(3, r)
-                r2 = dx * dx + dy * dy + dz * dz + e2
-                f = g / (r2 * sqrt(r2))
-                p(k, 1, r) = p(k, 1, r) + tj(l, 4) * f * dx
-                p(k, 2, r) = p(k, 2, r) + tj(l, 4) * f * dy
-                p(k, 3, r) = p(k, 3, r) + tj(l, 4) * f * dz
-                acc(l, 1) = acc(l, 1) - mi(r) * f * dx
-                acc(l, 2) = acc(l, 2) - mi(r) * f * dy
-                acc(l, 3) = acc(l, 3) - mi(r) * f * dz
-            end do
+            call accel_row(qi(:, r), mi(r), g, e2, l0 + 1, nj, tj, acc, t)
+            p(1:nj - l0, :, r) = p(1:nj - l0, :, r) + t(l0 + 1:nj, :)
         end do
+        call add_classes(nr, p, c)
+    end subroutine accel_rows
+
+    !> c(:, r) = 0 + p(1, :, r) + ... + p(LANES, :, r), in class order, for rows 1..nr.
+    pure subroutine add_classes(nr, p, c)
+        integer, intent(in) :: nr                                !! rows
+        real(wp), intent(in) :: p(LANES, 3, ROWS)                !! class sums
+        real(wp), intent(out) :: c(3, nr)                        !! their sums
+        integer :: k, r
         c = 0.0_wp
         do r = 1, nr
             do k = 1, LANES
                 c(:, r) = c(:, r) + p(k, :, r)
             end do
         end do
-    end subroutine accel_rows
+    end subroutine add_classes
 
     !> Inner loop of the symmetric acceleration kernel: body i (at qi, mass mi) against lanes
     !> l0..l1 of block J; body i's terms into t, body j's subtracted from its lane.
@@ -472,65 +477,6 @@ contains
         end do
     end subroutine accel_row
 
-    !> One tile of the symmetric gradient kernel (as `accel_tile`): for the pair (i, j),
-    !> x = q_j - q_i, da = a_i - a_j, w = f (da - (3 x.da / s2) x), f = G / s2 / s; body i's
-    !> term is -2 m_j w, body j's +2 m_i w (its own term with x and da negated, so w is).
-    pure subroutine gradient_tile(n, m, g, e2, q, a, ib, ni, jb, nj, ci, cj)
-        integer, intent(in) :: n                                 !! number of bodies
-        real(wp), intent(in) :: m(n)                             !! masses
-        real(wp), intent(in) :: g                                !! gravitational constant
-        real(wp), intent(in) :: e2                               !! softening squared
-        real(wp), intent(in) :: q(3, n)                          !! positions
-        real(wp), intent(in) :: a(3, n)                          !! accelerations at q
-        integer, intent(in) :: ib                                !! first body of block I
-        integer, intent(in) :: ni                                !! bodies in block I
-        integer, intent(in) :: jb                                !! first body of block J
-        integer, intent(in) :: nj                                !! bodies in block J
-        real(wp), intent(out) :: ci(3, FSYM_NBODY_BLOCK)         !! c(i, J), i in I
-        real(wp), intent(out) :: cj(3, FSYM_NBODY_BLOCK)         !! c(j, I), j in J
-        real(wp) :: tj(FSYM_NBODY_BLOCK, 7), acc(FSYM_NBODY_BLOCK, 3), t(FSYM_NBODY_BLOCK, 3)
-        real(wp) :: s(3)
-        integer :: li, l, l0, r
-        do l = 1, nj
-            tj(l, 1:3) = q(:, jb + l - 1)
-            tj(l, 4:6) = a(:, jb + l - 1)
-            tj(l, 7) = 2.0_wp * m(jb + l - 1)
-        end do
-        acc(1:nj, :) = 0.0_wp
-        li = 1
-        if (ib /= jb) then
-            ! off the diagonal: rows in groups, body i's partial sum in LANES classes
-            do li = 1, ni, ROWS
-                r = min(ROWS, ni - li + 1)
-                call gradient_rows(r, q(:, ib + li - 1:ib + li + r - 2), &
-                                   a(:, ib + li - 1:ib + li + r - 2), &
-                                   m(ib + li - 1:ib + li + r - 2), g, e2, nj, tj, acc, &
-                                   ci(:, li:li + r - 1))
-            end do
-            li = ni + 1
-        end if
-        do li = li, ni
-            if (ib == jb) then
-                l0 = li + 1
-                s = acc(li, :)
-            else
-                l0 = 1
-                s = 0.0_wp
-            end if
-            call gradient_row(q(:, ib + li - 1), a(:, ib + li - 1), m(ib + li - 1), g, e2, &
-                              l0, nj, tj, acc, t)
-            do l = l0, nj
-                s(1) = s(1) - t(l, 1)
-                s(2) = s(2) - t(l, 2)
-                s(3) = s(3) - t(l, 3)
-            end do
-            ci(:, li) = s
-        end do
-        do l = 1, nj
-            cj(:, l) = acc(l, :)
-        end do
-    end subroutine gradient_tile
-
     !> Inner loops of the symmetric gradient kernel off the diagonal (as `accel_rows`): nr
     !> bodies i against all lanes of block J; lane j's accumulator receives +2 m_i w for each
     !> i in turn, body i's term -2 m_j w goes to its class sum of lane j.
@@ -545,72 +491,50 @@ contains
         real(wp), intent(in) :: tj(FSYM_NBODY_BLOCK, 7)          !! q, a, 2m of block J
         real(wp), intent(inout) :: acc(FSYM_NBODY_BLOCK, 3)      !! lanes' partial sums
         real(wp), intent(out) :: c(3, nr)                        !! c(i, J) of the bodies i
-        real(wp) :: p(LANES, 3, ROWS), m2(ROWS)
-        integer :: l0, k, r
+        real(wp) :: p(LANES, 3, ROWS), t(FSYM_NBODY_BLOCK, 3), m2
+        real(wp) :: dx, dy, dz, dax, day, daz, r2, rinv2, f, xda, cc, wx, wy, wz
+        integer :: l0, l, k, r
         p = 0.0_wp
-        m2(1:nr) = 2.0_wp * mi
         do l0 = 0, nj - LANES, LANES
             do r = 1, nr
-                call gradient_class_loop(qi(:, r), ai(:, r), m2(r), g, e2, l0, LANES, tj, acc, &
-                                         p(:, :, r))
+                m2 = 2.0_wp * mi(r)
+                !GCC$ vector
+                do k = 1, LANES
+                    l = l0 + k
+                    dx = tj(l, 1) - qi(1, r)
+                    dy = tj(l, 2) - qi(2, r)
+                    dz = tj(l, 3) - qi(3, r)
+                    r2 = dx * dx + dy * dy + dz * dz + e2
+                    rinv2 = 1.0_wp / r2
+                    f = g * rinv2 / sqrt(r2)
+                    dax = ai(1, r) - tj(l, 4)
+                    day = ai(2, r) - tj(l, 5)
+                    daz = ai(3, r) - tj(l, 6)
+                    xda = dx * dax + dy * day + dz * daz
+                    cc = 3.0_wp * xda * rinv2
+                    wx = f * (dax - cc * dx)
+                    wy = f * (day - cc * dy)
+                    wz = f * (daz - cc * dz)
+                    p(k, 1, r) = p(k, 1, r) - tj(l, 7) * wx
+                    p(k, 2, r) = p(k, 2, r) - tj(l, 7) * wy
+                    p(k, 3, r) = p(k, 3, r) - tj(l, 7) * wz
+                    acc(l, 1) = acc(l, 1) + m2 * wx
+                    acc(l, 2) = acc(l, 2) + m2 * wy
+                    acc(l, 3) = acc(l, 3) + m2 * wz
+                end do
             end do
         end do
+        ! the last lanes (fewer than LANES): the same terms from the row loop
         l0 = nj - mod(nj, LANES)
         do r = 1, nr
-            call gradient_class_loop(qi(:, r), ai(:, r), m2(r), g, e2, l0, nj - l0, tj, acc, &
-                                     p(:, :, r))
+            call gradient_row(qi(:, r), ai(:, r), mi(r), g, e2, l0 + 1, nj, tj, acc, t)
+            p(1:nj - l0, :, r) = p(1:nj - l0, :, r) + t(l0 + 1:nj, :)
         end do
-        c = 0.0_wp
-        do r = 1, nr
-            do k = 1, LANES
-                c(:, r) = c(:, r) + p(k, :, r)
-            end do
-        end do
+        call add_classes(nr, p, c)
     end subroutine gradient_rows
 
-    !> Lanes l0+1..l0+nk (nk <= LANES) of `gradient_rows` for one body i: its terms into the
-    !> class sums p(1..nk), +2 m_i w onto the lanes.
-    pure subroutine gradient_class_loop(qi, ai, m2, g, e2, l0, nk, tj, acc, p)
-        real(wp), intent(in) :: qi(3)                            !! position of body i
-        real(wp), intent(in) :: ai(3)                            !! its acceleration
-        real(wp), intent(in) :: m2                               !! twice its mass
-        real(wp), intent(in) :: g                                !! gravitational constant
-        real(wp), intent(in) :: e2                               !! softening squared
-        integer, intent(in) :: l0                                !! lanes before the group
-        integer, intent(in) :: nk                                !! lanes in the group
-        real(wp), intent(in) :: tj(FSYM_NBODY_BLOCK, 7)          !! q, a, 2m of block J
-        real(wp), intent(inout) :: acc(FSYM_NBODY_BLOCK, 3)      !! lanes' partial sums
-        real(wp), intent(inout) :: p(LANES, 3)                   !! body i's class sums
-        real(wp) :: dx, dy, dz, dax, day, daz, r2, rinv2, f, xda, c, wx, wy, wz
-        integer :: k, l
-        !GCC$ vector
-        do k = 1, nk
-            l = l0 + k
-            dx = tj(l, 1) - qi(1)
-            dy = tj(l, 2) - qi(2)
-            dz = tj(l, 3) - qi(3)
-            r2 = dx * dx + dy * dy + dz * dz + e2
-            rinv2 = 1.0_wp / r2
-            f = g * rinv2 / sqrt(r2)
-            dax = ai(1) - tj(l, 4)
-            day = ai(2) - tj(l, 5)
-            daz = ai(3) - tj(l, 6)
-            xda = dx * dax + dy * day + dz * daz
-            c = 3.0_wp * xda * rinv2
-            wx = f * (dax - c * dx)
-            wy = f * (day - c * dy)
-            wz = f * (daz - c * dz)
-            p(k, 1) = p(k, 1) - tj(l, 7) * wx
-            p(k, 2) = p(k, 2) - tj(l, 7) * wy
-            p(k, 3) = p(k, 3) - tj(l, 7) * wz
-            acc(l, 1) = acc(l, 1) + m2 * wx
-            acc(l, 2) = acc(l, 2) + m2 * wy
-            acc(l, 3) = acc(l, 3) + m2 * wz
-        end do
-    end subroutine gradient_class_loop
-
     !> Inner loop of the symmetric gradient kernel: body i (position qi, acceleration ai,
-    !> mass mi) against lanes l0..l1 of block J; 2 m_j w into t, +2 m_i w onto lane j.
+    !> mass mi) against lanes l0..l1 of block J; -2 m_j w into t, +2 m_i w onto lane j.
     pure subroutine gradient_row(qi, ai, mi, g, e2, l0, l1, tj, acc, t)
         real(wp), intent(in) :: qi(3)                            !! position of body i
         real(wp), intent(in) :: ai(3)                            !! its acceleration
@@ -621,7 +545,7 @@ contains
         integer, intent(in) :: l1                                !! last lane
         real(wp), intent(in) :: tj(FSYM_NBODY_BLOCK, 7)          !! q, a, 2m of block J
         real(wp), intent(inout) :: acc(FSYM_NBODY_BLOCK, 3)      !! lanes' partial sums
-        real(wp), intent(inout) :: t(FSYM_NBODY_BLOCK, 3)        !! body i's terms, negated
+        real(wp), intent(inout) :: t(FSYM_NBODY_BLOCK, 3)        !! body i's terms
         real(wp) :: m2, dx, dy, dz, dax, day, daz, r2, rinv2, f, xda, c, wx, wy, wz
         integer :: l
         m2 = 2.0_wp * mi
@@ -641,9 +565,9 @@ contains
             wx = f * (dax - c * dx)
             wy = f * (day - c * dy)
             wz = f * (daz - c * dz)
-            t(l, 1) = tj(l, 7) * wx
-            t(l, 2) = tj(l, 7) * wy
-            t(l, 3) = tj(l, 7) * wz
+            t(l, 1) = -(tj(l, 7) * wx)
+            t(l, 2) = -(tj(l, 7) * wy)
+            t(l, 3) = -(tj(l, 7) * wz)
             acc(l, 1) = acc(l, 1) + m2 * wx
             acc(l, 2) = acc(l, 2) + m2 * wy
             acc(l, 3) = acc(l, 3) + m2 * wz
