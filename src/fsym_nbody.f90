@@ -64,7 +64,8 @@ module fsym_nbody
     !> Bodies per block of the pair kernel. It fixes the order of every body's sum (blocks of
     !> sources in ascending order, see the module description), so it is a constant.
     integer, parameter, public :: FSYM_NBODY_BLOCK = 128
-    !> Largest chunk of targets of the range routines (larger requests are clipped to it).
+    !> Largest chunk of targets of the range routines (larger requests are clipped to it; as
+    !> a chunk never straddles two blocks, chunks have at most FSYM_NBODY_BLOCK targets).
     integer, parameter, public :: FSYM_NBODY_MAX_BLOCK = 256
     !> Default chunk of targets of the range routines (any chunk gives the same bits).
     integer, parameter :: TARGET_CHUNK = 64
@@ -93,6 +94,7 @@ contains
         character(len=*), intent(inout), optional :: errmsg   !! message on error
         real(wp) :: e
         integer :: nb
+        !$ integer :: ast
         e = 0.0_wp
         if (present(eps)) e = eps
         if (size(m) < 1) then
@@ -114,8 +116,11 @@ contains
         self%eps = e
         if (allocated(self%work)) deallocate (self%work)
         nb = (size(m) + FSYM_NBODY_BLOCK - 1) / FSYM_NBODY_BLOCK
-        ! the work array serves the threads only: allocated in an OpenMP build
-        !$ if (3.0_wp * size(m) * nb <= FSYM_NBODY_WORK_MAX) allocate (self%work(3, size(m), nb))
+        ! the work array serves the threads only: allocated in an OpenMP build (if that
+        ! fails, the threads use the range routine: the same bits)
+        !$ if (3.0_wp * size(m) * nb <= FSYM_NBODY_WORK_MAX) then
+        !$     allocate (self%work(3, size(m), nb), stat=ast)
+        !$ end if
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine nbody_init
 
