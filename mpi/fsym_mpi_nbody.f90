@@ -14,9 +14,10 @@
 !>   gathered; if any did, the positions are gathered again), then
 !>   `fsym_nbody_gradient_range` for the own block, then the status reduction.
 !>
-!> Every body's sum therefore runs over all bodies in ascending order on whichever rank owns
-!> it, exactly as in the serial model: the results are bitwise those of the serial run for
-!> any number of ranks, any block sizes and any number of threads per rank.
+!> Every body's sum therefore runs over all bodies in the library's order (see `fsym_nbody`)
+!> on whichever rank owns it, exactly as in the serial model: the results are bitwise those
+!> of the serial run for any number of ranks, any block sizes and any number of threads per
+!> rank.
 !>
 !> Failure: a rank whose force fails (its own status from `local_acceleration` or
 !> `local_gradient`, a bad shape, or a non-finite result) makes the status reduction non-zero
