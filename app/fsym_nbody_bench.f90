@@ -43,8 +43,8 @@ contains
         write (output_unit, '(a)') '## Direct-summation N-body (3D, `nbody_model_t`)', ''
         write (output_unit, '(a)') 'Random positions in a unit cube, masses (0.5..1.5)/N, small'// &
             ' velocities; library FR step (3 forces/step, h = 1e-6) through `integrator_t%step`'// &
-            ' (general path: reverse communication, model called through its type-bound'// &
-            ' procedure). Force = `model%acceleration` alone. Outside (difference) ='// &
+            ' (the one kernel, the model called through its type-bound procedure).'// &
+            ' Force = `model%acceleration` alone. Outside (difference) ='// &
             ' 1 - 3 t_force / t_step (noise can make it negative); outside (direct) ='// &
             ' t_zero / t_step with t_zero the same step with a force model that costs nothing'// &
             ' (a = 0). Medians of 5 runs each.', '', &
