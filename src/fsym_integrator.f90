@@ -67,7 +67,7 @@ contains
         real(wp), intent(in), optional :: t0                  !! start time (default 0)
         type(scheme_t) :: s
         type(kernel_state_t) :: ks
-        integer :: st
+        integer :: st, ast
         character(len=256) :: msg
         logical :: comp
 
@@ -97,10 +97,17 @@ contains
         if (present(compensated)) comp = compensated
         call fsym_kernel_layout(s%op, comp, d, n, ks)
 
+        self%ready = .false.
+        if (allocated(self%w)) deallocate (self%w)
+        allocate (self%w(d, n, ks%nslot), stat=ast)
+        if (ast /= 0) then
+            call fsym_report(FSYM_ERR_NO_MEMORY, 'integrator workspace of '// &
+                             fsym_int_text(ks%nslot)//' x '//fsym_int_text(d)//' x '// &
+                             fsym_int_text(n)//' reals', stat, errmsg)
+            return
+        end if
         self%sc = s
         self%ks = ks
-        if (allocated(self%w)) deallocate (self%w)
-        allocate (self%w(d, n, ks%nslot))
         self%w = 0.0_wp
         call self%describe_stepper(s%name, d, n, .true., s%forward, s%symplectic, s%nforce, &
                                    s%ngrad, 0.0_wp)

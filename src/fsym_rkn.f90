@@ -33,11 +33,18 @@ contains
         integer, intent(out), optional :: stat                !! status code
         character(len=*), intent(inout), optional :: errmsg   !! message on error
         real(wp), intent(in), optional :: t0                  !! start time (default 0)
+        integer :: ast
         if (d < 1 .or. n < 1) then
             call fsym_report(FSYM_ERR_SHAPE, 'need d >= 1 and n >= 1', stat, errmsg); return
         end if
+        self%ready = .false.
         if (allocated(self%f0)) deallocate (self%f0, self%f1, self%f2, self%qt)
-        allocate (self%f0(d, n), self%f1(d, n), self%f2(d, n), self%qt(d, n))
+        allocate (self%f0(d, n), self%f1(d, n), self%f2(d, n), self%qt(d, n), stat=ast)
+        if (ast /= 0) then
+            call fsym_report(FSYM_ERR_NO_MEMORY, 'RKN workspace of 4 x '//fsym_int_text(d)// &
+                             ' x '//fsym_int_text(n)//' reals', stat, errmsg)
+            return
+        end if
         call self%describe_stepper('RKN', d, n, .false., .false., .false., 3, 0, 0.0_wp)
         if (present(t0)) call self%set_time(t0)
         self%ready = .true.

@@ -32,13 +32,19 @@ contains
         integer, intent(in) :: d, n, capacity                 !! shape, capacity
         integer, intent(out), optional :: stat                !! status code
         character(len=*), intent(inout), optional :: errmsg   !! message on error
+        integer :: ast
         if (d < 1 .or. n < 1 .or. capacity < 1) then
             call fsym_report(FSYM_ERR_SHAPE, 'trace needs d, n, capacity >= 1', stat, errmsg)
             return
         end if
         if (allocated(self%step)) deallocate (self%step, self%stage, self%kind, self%q)
         allocate (self%step(capacity), self%stage(capacity), self%kind(capacity), &
-                  self%q(d, n, capacity))
+                  self%q(d, n, capacity), stat=ast)
+        if (ast /= 0) then
+            call fsym_report(FSYM_ERR_NO_MEMORY, 'trace buffer for '// &
+                             fsym_int_text(capacity)//' points', stat, errmsg)
+            return
+        end if
         self%d = d; self%n = n
         call self%clear()
         if (present(stat)) stat = FSYM_SUCCESS
