@@ -38,9 +38,14 @@ contains
             call fsym_report(FSYM_ERR_SHAPE, 'need d >= 1 and n >= 1', stat, errmsg); return
         end if
         self%ready = .false.
-        if (allocated(self%f0)) deallocate (self%f0, self%f1, self%f2, self%qt)
-        allocate (self%f0(d, n), self%f1(d, n), self%f2(d, n), self%qt(d, n), stat=ast)
+        call rkn_release(self)
+        ! one allocation at a time: after a failure the rest are known to be unallocated
+        allocate (self%f0(d, n), stat=ast)
+        if (ast == 0) allocate (self%f1(d, n), stat=ast)
+        if (ast == 0) allocate (self%f2(d, n), stat=ast)
+        if (ast == 0) allocate (self%qt(d, n), stat=ast)
         if (ast /= 0) then
+            call rkn_release(self)
             call fsym_report(FSYM_ERR_NO_MEMORY, 'RKN workspace of 4 x '//fsym_int_text(d)// &
                              ' x '//fsym_int_text(n)//' reals', stat, errmsg)
             return
@@ -131,8 +136,17 @@ contains
     !> Release the workspace.
     subroutine rkn_destroy(self)
         class(rkn_t), intent(inout) :: self  !! the stepper
-        if (allocated(self%f0)) deallocate (self%f0, self%f1, self%f2, self%qt)
+        call rkn_release(self)
         self%ready = .false.
     end subroutine rkn_destroy
+
+    !> Release whatever part of the workspace is allocated.
+    subroutine rkn_release(self)
+        class(rkn_t), intent(inout) :: self  !! the stepper
+        if (allocated(self%f0)) deallocate (self%f0)
+        if (allocated(self%f1)) deallocate (self%f1)
+        if (allocated(self%f2)) deallocate (self%f2)
+        if (allocated(self%qt)) deallocate (self%qt)
+    end subroutine rkn_release
 
 end module fsym_rkn

@@ -37,10 +37,14 @@ contains
             call fsym_report(FSYM_ERR_SHAPE, 'trace needs d, n, capacity >= 1', stat, errmsg)
             return
         end if
-        if (allocated(self%step)) deallocate (self%step, self%stage, self%kind, self%q)
-        allocate (self%step(capacity), self%stage(capacity), self%kind(capacity), &
-                  self%q(d, n, capacity), stat=ast)
+        call trace_release(self)
+        ! one allocation at a time: after a failure the rest are known to be unallocated
+        allocate (self%step(capacity), stat=ast)
+        if (ast == 0) allocate (self%stage(capacity), stat=ast)
+        if (ast == 0) allocate (self%kind(capacity), stat=ast)
+        if (ast == 0) allocate (self%q(d, n, capacity), stat=ast)
         if (ast /= 0) then
+            call trace_release(self)
             call fsym_report(FSYM_ERR_NO_MEMORY, 'trace buffer for '// &
                              fsym_int_text(capacity)//' points', stat, errmsg)
             return
@@ -77,5 +81,14 @@ contains
         self%count = 0
         self%dropped = 0
     end subroutine trace_clear
+
+    !> Release whatever part of the buffers is allocated.
+    subroutine trace_release(self)
+        class(trace_recorder_t), intent(inout) :: self  !! the recorder
+        if (allocated(self%step)) deallocate (self%step)
+        if (allocated(self%stage)) deallocate (self%stage)
+        if (allocated(self%kind)) deallocate (self%kind)
+        if (allocated(self%q)) deallocate (self%q)
+    end subroutine trace_release
 
 end module fsym_trace
