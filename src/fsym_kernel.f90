@@ -16,10 +16,11 @@ module fsym_kernel
     use fsym_force, only: force_model_t, recorder_t, EVAL_FORCE, EVAL_GRADIENT, &
                           EVAL_EXTRAPOLATED
     use fsym_kernel_state, only: kernel_state_t, KERNEL_SUSPEND, REQ_NONE, REQ_FORCE, &
-                                 REQ_GRADIENT, REQ_FORCE_SHIFTED
+        REQ_GRADIENT, REQ_FORCE_SHIFTED, fsym_kernel_layout, fsym_kernel_abort, &
+        fsym_kernel_invalidate
     use fsym_kernel_loops, only: fsym_all_finite, copy => fsym_loop_copy, &
-        shifted => fsym_loop_shifted, update => fsym_loop_update, update2 => fsym_loop_update2, &
-        same => fsym_loop_same, save => fsym_loop_save
+        shifted => fsym_loop_shifted, update_comp => fsym_loop_update_comp, &
+        update2_comp => fsym_loop_update2_comp, same => fsym_loop_same
     implicit none
     private
 
@@ -30,49 +31,6 @@ module fsym_kernel
 
 contains
 
-    !> Set up `ks` for a scheme on arrays (d, n): the slots it needs (methods without
-    !> gradient or extrapolation, and runs without compensation, pay no memory for them).
-    !> The caller then provides `w(d, n, ks%nslot)`.
-    pure subroutine fsym_kernel_layout(op, compensated, d, n, ks)
-        integer, intent(in) :: op(:)                 !! the scheme's op codes
-        logical, intent(in) :: compensated           !! Kahan-compensated updates
-        integer, intent(in) :: d, n                  !! dimensions, particles
-        type(kernel_state_t), intent(out) :: ks      !! the new state
-        ks%d = d; ks%n = n; ks%comp = compensated
-        ks%ia = 1; ks%iq0 = 2; ks%iv0 = 3; ks%iqlast = 4; ks%nslot = 4
-        if (any(op == OP_GRAD_KICK)) then
-            ks%ig = 5; ks%nslot = 5
-        end if
-        if (any(op == OP_EXTRAP_KICK)) then
-            ks%iqe = ks%nslot + 1; ks%iae = ks%nslot + 2; ks%nslot = ks%nslot + 2
-        end if
-        if (compensated) then
-            ks%iqc = ks%nslot + 1; ks%ivc = ks%nslot + 2; ks%iqc0 = ks%nslot + 3
-            ks%ivc0 = ks%nslot + 4; ks%nslot = ks%nslot + 4
-        end if
-    end subroutine fsym_kernel_layout
-
-    !> Forget every cached force (after changing the model's parameters between steps).
-    pure subroutine fsym_kernel_invalidate(ks)
-        type(kernel_state_t), intent(inout) :: ks  !! kernel state
-        ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
-    end subroutine fsym_kernel_invalidate
-
-    !> Undo a suspended step: restore q, v (and the compensation terms) saved at its start.
-    subroutine fsym_kernel_abort(ks, q, v, w)
-        type(kernel_state_t), intent(inout) :: ks                !! kernel state
-        real(wp), intent(inout) :: q(ks%d, ks%n), v(ks%d, ks%n)  !! state, restored
-        real(wp), intent(inout) :: w(ks%d, ks%n, ks%nslot)       !! work array
-        if (ks%active) then
-            q = w(:, :, ks%iq0); v = w(:, :, ks%iv0)
-            if (ks%comp) then
-                w(:, :, ks%iqc) = w(:, :, ks%iqc0); w(:, :, ks%ivc) = w(:, :, ks%ivc0)
-            end if
-        end if
-        call fsym_kernel_invalidate(ks)
-        ks%active = .false.; ks%req = REQ_NONE
-    end subroutine fsym_kernel_abort
-
     !> Take up to `nsteps` steps of size h (or resume a suspended step and go on). On return
     !> `ndone` steps are complete. On failure `stat` is an `FSYM_ERR_*` code, q and v are the
     !> state after `ndone` steps, and `ks%pc` names the failing stage (0: refused on entry,
@@ -82,7 +40,9 @@ contains
     !> kick is checked by that test: x + s y is NaN or Inf wherever y is (NaN * s is NaN for
     !> any s, Inf * s is Inf, or NaN when s = 0), so a failed test looks at y itself to tell a
     !> non-finite force (the stage fails) from a non-finite state (the step fails at its end,
-    !> as the last drift's and the last kick's tests say). Other forces are checked at once.
+    !> as the last drift's and the last kick's tests say); a(q) of a gradient kick is in its
+    !> update too. Other forces are checked at once. The first update of q and of v in a step
+    !> saves the old values in the same loop (the state the step restores on failure).
     subroutine fsym_kernel_run(op, c, u, model, ks, q, v, w, h, nsteps, ndone, stat, &
                                recorder, step0)
         integer, intent(in), contiguous :: op(:)                 !! op codes of the stages
@@ -98,12 +58,14 @@ contains
         class(recorder_t), intent(inout), optional :: recorder   !! force-point recorder
         integer(ik), intent(in), optional :: step0               !! steps before this call
         real(wp), pointer, contiguous :: qp(:, :), a(:, :), g(:, :), qe(:, :), ae(:, :)
-        integer(ik) :: i
+        real(wp), pointer, contiguous :: x(:, :)
+        integer(ik) :: i, s0
         integer :: k, m
         real(wp) :: hs, shift
-        logical :: qok, vok, fresh, resumed, saved
+        logical :: qok, vok, vwas, fresh, fa, resumed
 
-        ndone = 0; stat = FSYM_SUCCESS; m = ks%d * ks%n; saved = .false.
+        ndone = 0; stat = FSYM_SUCCESS; m = ks%d * ks%n; s0 = 0
+        if (present(step0)) s0 = step0
         qp => q; a => w(:, :, ks%ia); g => w(:, :, ks%ig)      ! descriptors made once
         qe => w(:, :, ks%iqe); ae => w(:, :, ks%iae)
         if (.not. ks%active) then
@@ -112,10 +74,7 @@ contains
             if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
                 stat = FSYM_ERR_BAD_STEP; return
             end if
-            ! the check of the state on entry saves it for the first step in the same loops
-            saved = save(m, q, w(:, :, ks%iq0))
-            if (saved) saved = save(m, v, w(:, :, ks%iv0))
-            if (.not. saved) then
+            if (.not. (fsym_all_finite(m, q) .and. fsym_all_finite(m, v))) then
                 stat = FSYM_ERR_NONFINITE_STATE; return
             end if
             if (ks%have_a) then
@@ -131,11 +90,9 @@ contains
                 if (.not. accepted(ks%req, .true.)) return
                 ks%active = .false.; ks%req = REQ_NONE
             else
-                if (.not. saved) then
-                    call copy(m, q, w(:, :, ks%iq0)); call copy(m, v, w(:, :, ks%iv0))
-                end if
-                saved = .false.
+                ks%qsaved = ks%comp; ks%vsaved = ks%comp      ! compensated: all saved here
                 if (ks%comp) then
+                    call copy(m, q, w(:, :, ks%iq0)); call copy(m, v, w(:, :, ks%iv0))
                     call copy(m, w(:, :, ks%iqc), w(:, :, ks%iqc0))
                     call copy(m, w(:, :, ks%ivc), w(:, :, ks%ivc0))
                 end if
@@ -145,25 +102,35 @@ contains
                 ks%pc = k
                 select case (op(k))
                 case (OP_DRIFT)
-                    qok = update(ks%comp, m, q, w(:, :, ks%iqc), c(k) * hs, v)
+                    qok = upd(q, w(:, :, ks%iqc), w(:, :, ks%iq0), c(k) * hs, v, ks%qsaved)
+                    ks%qsaved = .true.
                     ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
                 case (OP_KICK)
                     fresh = .not. ks%have_a
                     if (fresh) then
                         if (.not. evaluated(REQ_FORCE, .false.)) return
                     end if
-                    vok = update(ks%comp, m, v, w(:, :, ks%ivc), c(k) * hs, a)
-                    if (.not. force_ok(a, .false.)) return
+                    vok = upd(v, w(:, :, ks%ivc), w(:, :, ks%iv0), c(k) * hs, a, ks%vsaved)
+                    ks%vsaved = .true.
+                    if (.not. (vok .or. forces_ok(a, .false., .false., .true.))) return
                 case (OP_GRAD_KICK)
-                    if (.not. ready(REQ_FORCE)) return
+                    fa = .not. ks%have_a
+                    if (fa) then
+                        if (.not. evaluated(REQ_FORCE, .false.)) return
+                    end if
                     fresh = .not. ks%have_g
                     if (fresh) then
                         if (.not. evaluated(REQ_GRADIENT, .false.)) return
                     end if
-                    vok = update2(ks%comp, m, v, w(:, :, ks%ivc), c(k) * hs, a, u(k) * hs**3, g)
-                    if (.not. force_ok(g, .true.)) return
+                    vwas = vok
+                    vok = upd2(v, w(:, :, ks%ivc), w(:, :, ks%iv0), c(k) * hs, a, &
+                               u(k) * hs**3, g, ks%vsaved)
+                    ks%vsaved = .true.
+                    if (.not. (vok .or. forces_ok(g, .true., fa, vwas))) return
                 case (OP_EXTRAP_KICK)
-                    if (.not. ready(REQ_FORCE)) return
+                    if (.not. ks%have_a) then
+                        if (.not. evaluated(REQ_FORCE, .true.)) return
+                    end if
                     shift = u(k) * hs * hs
                     fresh = .not. ks%have_x .or. ks%xshift /= shift
                     if (fresh) then
@@ -171,8 +138,9 @@ contains
                         ks%xshift = shift; ks%have_x = .false.
                         if (.not. evaluated(REQ_FORCE_SHIFTED, .false.)) return
                     end if
-                    vok = update(ks%comp, m, v, w(:, :, ks%ivc), c(k) * hs, ae)
-                    if (.not. force_ok(ae, .false.)) return
+                    vok = upd(v, w(:, :, ks%ivc), w(:, :, ks%iv0), c(k) * hs, ae, ks%vsaved)
+                    ks%vsaved = .true.
+                    if (.not. (vok .or. forces_ok(ae, .false., .false., .true.))) return
                 case default
                     continue      ! a validated scheme has no other op codes
                 end select
@@ -191,30 +159,63 @@ contains
 
     contains
 
-        !> a(q) (or g(q)) is cached or now evaluated and checked; false when the step failed
-        !> or suspended.
-        logical function ready(req)
-            integer, intent(in) :: req
-            ready = ks%have_a
-            if (req == REQ_GRADIENT) ready = ks%have_g
-            if (.not. ready) ready = evaluated(req, .true.)
-        end function ready
+        !> x <- x + s y (compensated in e when `ks%comp`), the old x saved into x0 in the same
+        !> loop unless `saved` (after the new value: no separate copy); true when all finite.
+        logical function upd(x, e, x0, s, y, saved) result(ok)
+            real(wp), intent(inout) :: x(m), e(m), x0(m)
+            real(wp), intent(in) :: s, y(m)
+            logical, intent(in) :: saved
+            real(wp) :: t
+            integer :: j, bad
+            if (ks%comp) then
+                ok = update_comp(m, x, e, s, y); return
+            end if
+            bad = 0
+            do j = 1, m
+                t = x(j); x(j) = t + s * y(j)
+                bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp)))
+                if (.not. saved) x0(j) = t
+            end do
+            ok = bad == 0
+        end function upd
 
-        !> After a kick whose new v is not all finite: false (force uncounted, step undone)
-        !> when the force y evaluated for it (`fresh`) is not finite.
-        logical function force_ok(y, grad)
+        !> x <- x + (s y + r z), as `upd`.
+        logical function upd2(x, e, x0, s, y, r, z, saved) result(ok)
+            real(wp), intent(inout) :: x(m), e(m), x0(m)
+            real(wp), intent(in) :: s, y(m), r, z(m)
+            logical, intent(in) :: saved
+            real(wp) :: t
+            integer :: j, bad
+            if (ks%comp) then
+                ok = update2_comp(m, x, e, s, y, r, z); return
+            end if
+            bad = 0
+            do j = 1, m
+                t = x(j); x(j) = t + (s * y(j) + r * z(j))
+                bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp)))
+                if (.not. saved) x0(j) = t
+            end do
+            ok = bad == 0
+        end function upd2
+
+        !> After a kick whose new v is not all finite: false (step undone, forces uncounted)
+        !> when a force evaluated for it is not: a(q) for a gradient kick (`fa`), then y
+        !> (`fresh`; `grad`: the gradient term). The model's fault only where the state it was
+        !> evaluated at (q, and v before the kick, `vwas`) is finite.
+        logical function forces_ok(y, grad, fa, vwas)
             real(wp), intent(in) :: y(m)
-            logical, intent(in) :: grad
-            force_ok = vok .or. .not. fresh
-            if (force_ok) return
-            force_ok = all(ieee_is_finite(y))
-            if (force_ok) return
-            if (grad) ks%ng = ks%ng - 1
-            if (.not. grad) ks%nf = ks%nf - 1
-            ! the model's fault only where the state it was evaluated at is finite
+            logical, intent(in) :: grad, fa, vwas
+            logical :: fy
+            fy = .true.
+            if (fa) fy = fsym_all_finite(m, a)
+            forces_ok = fy
+            if (forces_ok .and. fresh) forces_ok = fsym_all_finite(m, y)
+            if (forces_ok) return
+            if (grad .and. fresh) ks%ng = ks%ng - 1
+            if (.not. (fy .and. grad)) ks%nf = ks%nf - 1
             call fail(merge(FSYM_ERR_NONFINITE_FORCE, FSYM_ERR_NONFINITE_STATE, &
-                            fsym_all_finite(m, q)))
-        end function force_ok
+                            fsym_all_finite(m, q) .and. (vwas .or. fy)))
+        end function forces_ok
 
         !> Evaluate what `req` names, record it, accept it (checked when `check`); false
         !> when the step failed (undone) or was suspended.
@@ -223,24 +224,21 @@ contains
             logical, intent(in) :: check
             integer :: mst, kind
             mst = 0
+            x => qp
             select case (req)
             case (REQ_FORCE)
                 call model%acceleration(qp, a, mst); kind = EVAL_FORCE
             case (REQ_GRADIENT)
                 call model%gradient(qp, a, g, mst); kind = EVAL_GRADIENT
             case default
-                call model%acceleration(qe, ae, mst); kind = EVAL_EXTRAPOLATED
+                call model%acceleration(qe, ae, mst); kind = EVAL_EXTRAPOLATED; x => qe
             end select
             evaluated = .false.
             if (mst == KERNEL_SUSPEND) then
                 ks%active = .true.; ks%req = req; stat = KERNEL_SUSPEND
                 return
             end if
-            if (present(recorder)) then
-                if (kind /= EVAL_EXTRAPOLATED) call recorder%record(step_no(), ks%pc, kind, q)
-                if (kind == EVAL_EXTRAPOLATED) call recorder%record(step_no(), ks%pc, kind, &
-                                                                    w(:, :, ks%iqe))
-            end if
+            if (present(recorder)) call recorder%record(s0 + ndone + 1, ks%pc, kind, x)
             if (mst /= 0) then
                 call fail(FSYM_ERR_MODEL); return
             end if
@@ -273,11 +271,6 @@ contains
             end if
         end function accepted
 
-        integer(ik) function step_no()
-            step_no = ndone + 1
-            if (present(step0)) step_no = step0 + ndone + 1
-        end function step_no
-
         !> Undo the step in progress and report `code`.
         subroutine fail(code)
             integer, intent(in) :: code
@@ -285,7 +278,6 @@ contains
             call fsym_kernel_abort(ks, q, v, w)
             stat = code
         end subroutine fail
-
 
     end subroutine fsym_kernel_run
 

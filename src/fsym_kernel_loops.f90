@@ -1,14 +1,15 @@
-!> The array loops of the splitting kernel (`fsym_kernel`): the finite check, the saved
-!> state, the shifted point and the stage updates, each over all m = d*n values of a
-!> contiguous array. An update tests its new values in the same loop: x - x is 0 for a
-!> finite x and NaN for NaN or Inf (an integer flag, so the loop still vectorises).
+!> Array loops of the splitting kernel (`fsym_kernel`) and of fused steppers: the finite
+!> check, copies, the shifted point and the compensated stage updates, each over all
+!> m = d*n values of a contiguous array (the kernel's plain updates are its own, to be
+!> inlined). x - x is 0 for a finite x and NaN for NaN or Inf (an integer flag, so the
+!> loops vectorise).
 module fsym_kernel_loops
     use fsym_kinds, only: wp
     implicit none
     private
 
-    public :: fsym_all_finite, fsym_loop_copy, fsym_loop_shifted, fsym_loop_update
-    public :: fsym_loop_update2, fsym_loop_same, fsym_loop_save
+    public :: fsym_all_finite, fsym_loop_copy, fsym_loop_shifted, fsym_loop_update_comp
+    public :: fsym_loop_update2_comp, fsym_loop_same, fsym_loop_save
 
 contains
 
@@ -30,7 +31,10 @@ contains
         integer, intent(in) :: m         !! number of values
         real(wp), intent(in) :: x(m)     !! source
         real(wp), intent(out) :: y(m)    !! copy
-        y = x
+        integer :: j
+        do j = 1, m
+            y(j) = x(j)
+        end do
     end subroutine fsym_loop_copy
 
     !> y <- x; true when all values are finite (the check and the copy in one loop).
@@ -66,49 +70,31 @@ contains
         z = x + s * y
     end subroutine fsym_loop_shifted
 
-    !> x <- x + s y, Kahan-compensated in e when `comp`; true when the new x is all finite.
-    logical function fsym_loop_update(comp, m, x, e, s, y) result(ok)
-        logical, intent(in) :: comp                 !! compensated summation
+    !> x <- x + s y, Kahan-compensated in e; true when the new x is all finite.
+    logical function fsym_loop_update_comp(m, x, e, s, y) result(ok)
         integer, intent(in) :: m                    !! number of values
         real(wp), intent(inout) :: x(m), e(m)       !! values, compensation terms
         real(wp), intent(in) :: s, y(m)             !! factor, increment direction
         real(wp) :: inc, t
-        integer :: j, bad
-        if (comp) then
-            do j = 1, m
-                inc = s * y(j) - e(j); t = x(j) + inc; e(j) = (t - x(j)) - inc; x(j) = t
-            end do
-            ok = fsym_all_finite(m, x); return
-        end if
-        bad = 0
+        integer :: j
         do j = 1, m
-            x(j) = x(j) + s * y(j); bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp)))
+            inc = s * y(j) - e(j); t = x(j) + inc; e(j) = (t - x(j)) - inc; x(j) = t
         end do
-        ok = bad == 0
-    end function fsym_loop_update
+        ok = fsym_all_finite(m, x)
+    end function fsym_loop_update_comp
 
-    !> x <- x + (s y + r z), Kahan-compensated in e when `comp`; true when the new x is all
-    !> finite.
-    logical function fsym_loop_update2(comp, m, x, e, s, y, r, z) result(ok)
-        logical, intent(in) :: comp                 !! compensated summation
+    !> x <- x + (s y + r z), Kahan-compensated in e; true when the new x is all finite.
+    logical function fsym_loop_update2_comp(m, x, e, s, y, r, z) result(ok)
         integer, intent(in) :: m                    !! number of values
         real(wp), intent(inout) :: x(m), e(m)       !! values, compensation terms
         real(wp), intent(in) :: s, y(m), r, z(m)    !! factors and directions
         real(wp) :: inc, t
-        integer :: j, bad
-        if (comp) then
-            do j = 1, m
-                inc = (s * y(j) + r * z(j)) - e(j); t = x(j) + inc; e(j) = (t - x(j)) - inc
-                x(j) = t
-            end do
-            ok = fsym_all_finite(m, x); return
-        end if
-        bad = 0
+        integer :: j
         do j = 1, m
-            x(j) = x(j) + (s * y(j) + r * z(j))
-            bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp)))
+            inc = (s * y(j) + r * z(j)) - e(j); t = x(j) + inc; e(j) = (t - x(j)) - inc
+            x(j) = t
         end do
-        ok = bad == 0
-    end function fsym_loop_update2
+        ok = fsym_all_finite(m, x)
+    end function fsym_loop_update2_comp
 
 end module fsym_kernel_loops

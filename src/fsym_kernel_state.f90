@@ -1,11 +1,15 @@
 !> The state of the one splitting kernel (`fsym_kernel`): where each array lives in the
-!> caller's work array, what the force cache holds, the step in progress and the counters.
+!> caller's work array, what the force cache holds, the step in progress and the counters;
+!> and what is done to it outside a step: set up, forget the cache, undo a suspended step.
 !> Apart from the kernel so that a force model's own fused stepper (`force_model_t%advance`)
 !> can advance it as the kernel would.
 module fsym_kernel_state
     use fsym_kinds, only: wp, ik
+    use fsym_scheme, only: OP_GRAD_KICK, OP_EXTRAP_KICK
     implicit none
     private
+
+    public :: fsym_kernel_layout, fsym_kernel_invalidate, fsym_kernel_abort
 
     integer, parameter, public :: KERNEL_SUSPEND = -1  !! model stat / kernel stat: suspended
     integer, parameter, public :: REQ_NONE = 0           !! no force outstanding
@@ -20,7 +24,7 @@ module fsym_kernel_state
         integer :: nslot = 0                !! slots of d*n reals in the work array
         integer :: ia = 1, ig = 1           !! slots: acceleration, gradient term at q
         integer :: iqe = 1, iae = 1         !! slots: shifted point, acceleration there
-        integer :: iq0 = 1, iv0 = 1         !! slots: q, v on entry to the step
+        integer :: iq0 = 1, iv0 = 1         !! slots: q, v at the start of the step
         integer :: iqlast = 1               !! slot: q the cached force belongs to
         integer :: iqc = 1, ivc = 1         !! slots: compensation terms of q, v
         integer :: iqc0 = 1, ivc0 = 1       !! slots: compensation terms on entry
@@ -28,11 +32,60 @@ module fsym_kernel_state
         logical :: have_a = .false., have_g = .false., have_x = .false.
             !! slots ia, ig, iae hold valid forces
         logical :: active = .false.         !! a suspended step is in progress
+        logical :: qsaved = .false., vsaved = .false.
+            !! the step in progress has saved q, v (slots iq0, iv0) at their first update
         integer :: pc = 0                   !! stage in progress, or that failed (0: on entry)
         integer :: req = REQ_NONE           !! force outstanding while suspended
         real(wp) :: h = 0.0_wp              !! step of the step in progress
         real(wp) :: xshift = 0.0_wp         !! u h^2 of the cached extrapolated force
         integer(ik) :: nf = 0, ng = 0       !! force and gradient evaluations accepted
     end type kernel_state_t
+
+contains
+
+    !> Set up `ks` for a scheme on arrays (d, n): the slots it needs (methods without
+    !> gradient or extrapolation, and runs without compensation, pay no memory for them).
+    !> The caller then provides `w(d, n, ks%nslot)`.
+    pure subroutine fsym_kernel_layout(op, compensated, d, n, ks)
+        integer, intent(in) :: op(:)                 !! the scheme's op codes
+        logical, intent(in) :: compensated           !! Kahan-compensated updates
+        integer, intent(in) :: d, n                  !! dimensions, particles
+        type(kernel_state_t), intent(out) :: ks      !! the new state
+        ks%d = d; ks%n = n; ks%comp = compensated
+        ks%ia = 1; ks%iq0 = 2; ks%iv0 = 3; ks%iqlast = 4; ks%nslot = 4
+        if (any(op == OP_GRAD_KICK)) then
+            ks%ig = 5; ks%nslot = 5
+        end if
+        if (any(op == OP_EXTRAP_KICK)) then
+            ks%iqe = ks%nslot + 1; ks%iae = ks%nslot + 2; ks%nslot = ks%nslot + 2
+        end if
+        if (compensated) then
+            ks%iqc = ks%nslot + 1; ks%ivc = ks%nslot + 2; ks%iqc0 = ks%nslot + 3
+            ks%ivc0 = ks%nslot + 4; ks%nslot = ks%nslot + 4
+        end if
+    end subroutine fsym_kernel_layout
+
+    !> Forget every cached force (after changing the model's parameters between steps).
+    pure subroutine fsym_kernel_invalidate(ks)
+        type(kernel_state_t), intent(inout) :: ks  !! kernel state
+        ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
+    end subroutine fsym_kernel_invalidate
+
+    !> Undo a suspended step: restore q, v (and the compensation terms) as at its start
+    !> (each saved by the step's first update of it).
+    subroutine fsym_kernel_abort(ks, q, v, w)
+        type(kernel_state_t), intent(inout) :: ks                !! kernel state
+        real(wp), intent(inout) :: q(ks%d, ks%n), v(ks%d, ks%n)  !! state, restored
+        real(wp), intent(inout) :: w(ks%d, ks%n, ks%nslot)       !! work array
+        if (ks%active) then
+            if (ks%qsaved) q = w(:, :, ks%iq0)
+            if (ks%vsaved) v = w(:, :, ks%iv0)
+            if (ks%comp) then
+                w(:, :, ks%iqc) = w(:, :, ks%iqc0); w(:, :, ks%ivc) = w(:, :, ks%ivc0)
+            end if
+        end if
+        call fsym_kernel_invalidate(ks)
+        ks%active = .false.; ks%req = REQ_NONE
+    end subroutine fsym_kernel_abort
 
 end module fsym_kernel_state

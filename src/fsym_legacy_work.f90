@@ -159,7 +159,8 @@ contains
         ks%iq0 = iw(8); ks%iv0 = iw(9); ks%iqlast = iw(10)
         ks%iqc = iw(11); ks%ivc = iw(12); ks%iqc0 = iw(13); ks%ivc0 = iw(14)
         ks%comp = iw(15) /= 0; ks%have_a = iw(16) /= 0; ks%have_g = iw(17) /= 0
-        ks%have_x = iw(18) /= 0; ks%active = iw(19) /= 0
+        ks%have_x = iw(18) /= 0; ks%active = btest(iw(19), 0)
+        ks%qsaved = btest(iw(19), 1); ks%vsaved = btest(iw(19), 2)
         ks%pc = iw(20); ks%req = iw(21)
         ks%h = rw(1); ks%xshift = rw(2)
         ks%nf = int(rw(3), ik); ks%ng = int(rw(4), ik)
@@ -172,7 +173,8 @@ contains
         real(wp), intent(out) :: rw(4)            !! RW(1:4)
         iw = [ks%d, ks%n, ks%nslot, ks%ia, ks%ig, ks%iqe, ks%iae, ks%iq0, ks%iv0, ks%iqlast, &
               ks%iqc, ks%ivc, ks%iqc0, ks%ivc0, merge(1, 0, ks%comp), merge(1, 0, ks%have_a), &
-              merge(1, 0, ks%have_g), merge(1, 0, ks%have_x), merge(1, 0, ks%active), ks%pc, &
+              merge(1, 0, ks%have_g), merge(1, 0, ks%have_x), &
+              merge(1, 0, ks%active) + merge(2, 0, ks%qsaved) + merge(4, 0, ks%vsaved), ks%pc, &
               ks%req]
         rw = [ks%h, ks%xshift, real(ks%nf, wp), real(ks%ng, wp)]
     end subroutine legacy_store
