@@ -217,52 +217,54 @@ contains
                             fsym_all_finite(m, q) .and. (vwas .or. fy)))
         end function forces_ok
 
-        !> Evaluate what `req` names, record it, accept it (checked when `check`); false
-        !> when the step failed (undone) or was suspended.
+        !> Evaluate what `req` names and accept it (checked when `check`); false when the
+        !> step failed (undone) or was suspended. Small, to be inlined: the rest is `noted`.
         logical function evaluated(req, check)
             integer, intent(in) :: req
             logical, intent(in) :: check
-            integer :: mst, kind
+            integer :: mst
             mst = 0
-            x => qp
             select case (req)
             case (REQ_FORCE)
-                call model%acceleration(qp, a, mst); kind = EVAL_FORCE
+                call model%acceleration(qp, a, mst)
             case (REQ_GRADIENT)
-                call model%gradient(qp, a, g, mst); kind = EVAL_GRADIENT
+                call model%gradient(qp, a, g, mst)
             case default
-                call model%acceleration(qe, ae, mst); kind = EVAL_EXTRAPOLATED; x => qe
+                call model%acceleration(qe, ae, mst)
             end select
-            evaluated = .false.
+            evaluated = .true.
+            if (mst /= 0 .or. present(recorder)) evaluated = noted(req, mst)
+            if (evaluated) evaluated = accepted(req, check)
+        end function evaluated
+
+        !> After an evaluation with a recorder or a non-zero model `stat`: record the point;
+        !> false when the model suspended the step or failed (the step undone).
+        logical function noted(req, mst)
+            integer, intent(in) :: req, mst
+            noted = .false.
             if (mst == KERNEL_SUSPEND) then
                 ks%active = .true.; ks%req = req; stat = KERNEL_SUSPEND
                 return
             end if
-            if (present(recorder)) call recorder%record(s0 + ndone + 1, ks%pc, kind, x)
-            if (mst /= 0) then
-                call fail(FSYM_ERR_MODEL); return
+            if (present(recorder)) then
+                x => qp
+                if (req == REQ_FORCE_SHIFTED) x => qe
+                call recorder%record(s0 + ndone + 1, ks%pc, merge(EVAL_GRADIENT, merge( &
+                    EVAL_EXTRAPOLATED, EVAL_FORCE, req == REQ_FORCE_SHIFTED), &
+                    req == REQ_GRADIENT), x)
             end if
-            evaluated = accepted(req, check)
-        end function evaluated
+            noted = mst == 0
+            if (.not. noted) call fail(FSYM_ERR_MODEL)
+        end function noted
 
         !> Mark a force put into its slot valid and count it; when `check`, first check it
         !> (false, step undone, if it is not finite).
         logical function accepted(req, check)
             integer, intent(in) :: req
             logical, intent(in) :: check
-            integer :: slot
             accepted = .true.
-            if (check) then
-                slot = ks%ia
-                if (req == REQ_GRADIENT) slot = ks%ig
-                if (req == REQ_FORCE_SHIFTED) slot = ks%iae
-                accepted = fsym_all_finite(m, w(:, :, slot))
-                if (.not. accepted) then     ! the model's fault only where the state is finite
-                    call fail(merge(FSYM_ERR_NONFINITE_FORCE, FSYM_ERR_NONFINITE_STATE, &
-                                    fsym_all_finite(m, q) .and. fsym_all_finite(m, v)))
-                    return
-                end if
-            end if
+            if (check) accepted = checked(req)
+            if (.not. accepted) return
             if (req == REQ_GRADIENT) then
                 ks%have_g = .true.; ks%ng = ks%ng + 1
             else
@@ -270,6 +272,19 @@ contains
                 ks%have_x = ks%have_x .or. req == REQ_FORCE_SHIFTED
             end if
         end function accepted
+
+        !> The force in the slot `req` names is finite; else the step undone (the model's
+        !> fault only where the state is finite).
+        logical function checked(req)
+            integer, intent(in) :: req
+            integer :: slot
+            slot = ks%ia
+            if (req == REQ_GRADIENT) slot = ks%ig
+            if (req == REQ_FORCE_SHIFTED) slot = ks%iae
+            checked = fsym_all_finite(m, w(:, :, slot))
+            if (.not. checked) call fail(merge(FSYM_ERR_NONFINITE_FORCE, &
+                FSYM_ERR_NONFINITE_STATE, fsym_all_finite(m, q) .and. fsym_all_finite(m, v)))
+        end function checked
 
         !> Undo the step in progress and report `code`.
         subroutine fail(code)
