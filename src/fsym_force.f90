@@ -24,6 +24,8 @@ module fsym_force
         procedure :: has_potential => force_has_no_potential  !! whether `potential` is provided
         procedure :: advance => force_no_advance
             !! optional: whole steps of a scheme in the model's own fused loop (default: none)
+        procedure :: has_advance => force_has_no_advance
+            !! whether `advance` is provided (the integrator calls it only then)
         procedure :: local_frequency => force_no_frequency
             !! largest local frequency squared, for the step-size guard (optional)
         procedure :: has_frequency => force_has_no_frequency
@@ -117,6 +119,14 @@ contains
         integer(ik), intent(out) :: ndone                         !! steps taken
         ndone = 0
     end subroutine force_no_advance
+
+    !> Whether `advance` is provided (default: no). A model that overrides `advance`
+    !> overrides this too, to return true; the integrator asks first (a cheap call), so a
+    !> model without a fused stepper costs no `advance` call per step.
+    logical function force_has_no_advance(self)
+        class(force_model_t), intent(in) :: self  !! the model
+        force_has_no_advance = .false.
+    end function force_has_no_advance
 
     !> Whether `potential` is provided (default: no).
     logical function force_has_no_potential(self)

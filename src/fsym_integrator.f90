@@ -203,7 +203,8 @@ contains
     end subroutine integrator_run
 
     !> Up to `nsteps` steps in one kernel call, with the checks a call makes, the clock and
-    !> the counters; a failure is reported with the method, step and stage.
+    !> the counters; a failure is reported with the method, step and stage. The common
+    !> path is short: refusals, the guard and the recorder are apart.
     subroutine advance(self, model, q, v, h, nsteps, ndone, stat, errmsg, recorder)
         class(integrator_t), intent(inout) :: self
         class(force_model_t), intent(inout) :: model
@@ -215,61 +216,95 @@ contains
         character(len=*), intent(inout), optional :: errmsg
         class(recorder_t), intent(inout), optional :: recorder
         integer :: st
-        integer(ik) :: step0, nf, ng, nfused
-        ndone = 0
-        if (.not. self%ready) then
-            call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'integrator_t%step before init', stat, &
-                             errmsg)
-            return
-        end if
-        if (size(q, 1) /= self%ks%d .or. size(q, 2) /= self%ks%n .or. &
-            size(v, 1) /= self%ks%d .or. size(v, 2) /= self%ks%n) then
-            call fsym_report(FSYM_ERR_SHAPE, shape_text(self%ks%d, self%ks%n, q, v), stat, &
-                             errmsg)
-            return
+        integer(ik) :: nfused
+        ndone = 0; nfused = 0
+        if (.not. (self%ready .and. size(q, 1) == self%ks%d .and. size(q, 2) == self%ks%n &
+                   .and. size(v, 1) == self%ks%d .and. size(v, 2) == self%ks%n)) then
+            call refuse(self, model, q, v, stat, errmsg); return
         end if
         if (self%needs_g) then
             if (.not. model%has_gradient()) then
-                call fsym_report(FSYM_ERR_NO_GRADIENT, 'method '//self%sc%name// &
-                                 ': this model has no gradient term', stat, errmsg)
-                return
+                call refuse(self, model, q, v, stat, errmsg); return
             end if
         end if
-        step0 = self%steps()
-        nfused = 0
-        if (self%guard%on) then
-            ! the guard looks at every step: no fused steps in the model
-            call guarded_run(self, model, q, v, h, nsteps, ndone, st, recorder, step0)
+        if (self%guard%on .or. present(recorder)) then
+            call watched_run(self, model, q, v, h, nsteps, ndone, st, recorder)
         else
-            if (.not. present(recorder) .and. .not. self%ks%active) then
-                call model%advance(self%sc%op, self%sc%c, self%sc%u, self%ks, q, v, self%w, &
-                                   h, nsteps, nfused)
-            end if
             st = FSYM_SUCCESS
-            if (nfused < nsteps .or. self%ks%active) then
-                call fsym_kernel_run(self%sc%op, self%sc%c, self%sc%u, model, self%ks, q, v, &
-                                     self%w, h, nsteps - nfused, ndone, st, recorder, &
-                                     step0 + nfused)
+            if (.not. self%ks%active) then
+                if (model%has_advance()) call model%advance(self%sc%op, self%sc%c, &
+                    self%sc%u, self%ks, q, v, self%w, h, nsteps, nfused)
             end if
+            if (nfused < nsteps .or. self%ks%active) then
+                call fsym_kernel_run(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, model, &
+                                     self%ks, q, v, self%w, h, nsteps - nfused, ndone, st)
+            end if
+            ndone = ndone + nfused
         end if
-        if (st == KERNEL_SUSPEND) then
-            ! a model's stat that happens to be the kernel's suspend code is a failure here
-            call fsym_kernel_abort(self%ks, q, v, self%w)
-            st = FSYM_ERR_MODEL
-        end if
-        ndone = ndone + nfused
-        nf = self%ks%nf; ng = self%ks%ng
-        call self%counters(nf, ng, 1)
-        call self%count_step(h, ndone)
-        if (st == FSYM_ERR_STEP_TOO_LARGE) then
-            call fsym_report(st, fsym_guard_message(self%guard, self%sc%name, self%time(), &
-                             self%steps() + 1), stat, errmsg)
-            return
-        else if (st /= FSYM_SUCCESS) then
-            call report_step_failure(self, st, self%ks%pc == 0, stat, errmsg); return
+        call self%account(self%ks%nf, self%ks%ng, h, ndone)
+        if (st /= FSYM_SUCCESS) then
+            call report_failure(self, q, v, st, stat, errmsg); return
         end if
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine advance
+
+    !> `advance` refused: not initialised, arrays of the wrong shape, or no gradient term.
+    subroutine refuse(self, model, q, v, stat, errmsg)
+        class(integrator_t), intent(in) :: self
+        class(force_model_t), intent(inout) :: model
+        real(wp), intent(in), contiguous :: q(:, :), v(:, :)
+        integer, intent(out), optional :: stat
+        character(len=*), intent(inout), optional :: errmsg
+        if (.not. self%ready) then
+            call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'integrator_t%step before init', stat, &
+                             errmsg)
+        else if (any(shape(q) /= [self%ks%d, self%ks%n]) .or. &
+                 any(shape(v) /= [self%ks%d, self%ks%n])) then
+            call fsym_report(FSYM_ERR_SHAPE, shape_text(self%ks%d, self%ks%n, q, v), stat, &
+                             errmsg)
+        else if (self%needs_g .and. .not. model%has_gradient()) then
+            call fsym_report(FSYM_ERR_NO_GRADIENT, 'method '//self%sc%name// &
+                             ': this model has no gradient term', stat, errmsg)
+        end if
+    end subroutine refuse
+
+    !> The kernel with a recorder, or with the guard (step by step); no fused model steps.
+    subroutine watched_run(self, model, q, v, h, nsteps, ndone, st, recorder)
+        class(integrator_t), intent(inout) :: self
+        class(force_model_t), intent(inout) :: model
+        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)
+        real(wp), intent(in) :: h
+        integer(ik), intent(in) :: nsteps
+        integer(ik), intent(out) :: ndone
+        integer, intent(out) :: st
+        class(recorder_t), intent(inout), optional :: recorder
+        if (self%guard%on) then
+            call guarded_run(self, model, q, v, h, nsteps, ndone, st, recorder, self%steps())
+        else
+            call fsym_kernel_run(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, model, &
+                                 self%ks, q, v, self%w, h, nsteps, ndone, st, recorder, &
+                                 self%steps())
+        end if
+    end subroutine watched_run
+
+    !> Report the failure `st` of a kernel call (the state is that of the last good step).
+    subroutine report_failure(self, q, v, st, stat, errmsg)
+        class(integrator_t), intent(inout) :: self
+        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)
+        integer, intent(in) :: st
+        integer, intent(out), optional :: stat
+        character(len=*), intent(inout), optional :: errmsg
+        if (st == KERNEL_SUSPEND) then
+            ! a model's stat that happens to be the kernel's suspend code is a failure here
+            call fsym_kernel_abort(self%ks, q, v, self%w)
+            call report_step_failure(self, FSYM_ERR_MODEL, self%ks%pc == 0, stat, errmsg)
+        else if (st == FSYM_ERR_STEP_TOO_LARGE) then
+            call fsym_report(st, fsym_guard_message(self%guard, self%sc%name, self%time(), &
+                             self%steps() + 1), stat, errmsg)
+        else
+            call report_step_failure(self, st, self%ks%pc == 0, stat, errmsg)
+        end if
+    end subroutine report_failure
 
     !> The kernel step by step, each step checked by the guard (h omega <= limit) at its
     !> start and at its end; a step that ends beyond the limit is undone (the kernel keeps
@@ -288,8 +323,8 @@ contains
         do i = 1, nsteps
             call fsym_guard_check(self%guard, model, q, h, st)
             if (st /= FSYM_SUCCESS) exit
-            call fsym_kernel_run(self%sc%op, self%sc%c, self%sc%u, model, self%ks, q, v, &
-                                 self%w, h, 1_ik, nd, st, recorder, step0 + ndone)
+            call fsym_kernel_run(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, model, &
+                                 self%ks, q, v, self%w, h, 1_ik, nd, st, recorder, step0 + ndone)
             if (st /= FSYM_SUCCESS) return
             call fsym_guard_check(self%guard, model, q, h, st)
             if (st /= FSYM_SUCCESS) then

@@ -33,6 +33,7 @@ module fsym_kepler
         procedure :: potential => kepler_model_potential  !! sum of -mu/|q_j|
         procedure :: has_potential => kepler_model_has_potential  !! true
         procedure :: advance => kepler_model_advance  !! one body in d = 2, 3: fused steps
+        procedure :: has_advance => kepler_model_has_potential  !! true
         procedure :: local_frequency => kepler_model_frequency  !! max 2 mu / r^3 over bodies
         procedure :: has_frequency => kepler_model_has_potential  !! true
     end type kepler_model_t

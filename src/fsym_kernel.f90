@@ -12,7 +12,6 @@ module fsym_kernel
     use fsym_kinds, only: wp, ik
     use fsym_status
     use fsym_scheme, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use fsym_force, only: force_model_t, recorder_t, EVAL_FORCE, EVAL_GRADIENT, &
                           EVAL_EXTRAPOLATED
     use fsym_kernel_state, only: kernel_state_t, KERNEL_SUSPEND, REQ_NONE, REQ_FORCE, &
@@ -20,7 +19,7 @@ module fsym_kernel
         fsym_kernel_invalidate
     use fsym_kernel_loops, only: fsym_all_finite, copy => fsym_loop_copy, &
         shifted => fsym_loop_shifted, update_comp => fsym_loop_update_comp, &
-        update2_comp => fsym_loop_update2_comp, same => fsym_loop_same
+        update2_comp => fsym_loop_update2_comp
     implicit none
     private
 
@@ -43,10 +42,11 @@ contains
     !> as the last drift's and the last kick's tests say); a(q) of a gradient kick is in its
     !> update too. Other forces are checked at once. The first update of q and of v in a step
     !> saves the old values in the same loop (the state the step restores on failure).
-    subroutine fsym_kernel_run(op, c, u, model, ks, q, v, w, h, nsteps, ndone, stat, &
+    subroutine fsym_kernel_run(nop, op, c, u, model, ks, q, v, w, h, nsteps, ndone, stat, &
                                recorder, step0)
-        integer, intent(in), contiguous :: op(:)                 !! op codes of the stages
-        real(wp), intent(in), contiguous :: c(:), u(:)           !! stage coefficients
+        integer, intent(in) :: nop                               !! number of stages
+        integer, intent(in) :: op(nop)                           !! op codes of the stages
+        real(wp), intent(in) :: c(nop), u(nop)                   !! stage coefficients
         class(force_model_t), intent(inout) :: model             !! force model
         type(kernel_state_t), intent(inout) :: ks                !! kernel state
         real(wp), intent(inout), target :: q(ks%d, ks%n), v(ks%d, ks%n)  !! state
@@ -57,32 +57,27 @@ contains
         integer, intent(out) :: stat                             !! status
         class(recorder_t), intent(inout), optional :: recorder   !! force-point recorder
         integer(ik), intent(in), optional :: step0               !! steps before this call
-        real(wp), pointer, contiguous :: qp(:, :), a(:, :), g(:, :), qe(:, :), ae(:, :)
-        real(wp), pointer, contiguous :: x(:, :)
-        integer(ik) :: i, s0
-        integer :: k, m
+        real(wp), pointer, contiguous :: qp(:, :), a(:, :), g(:, :), x(:, :)
+        integer(ik) :: i, s0, nlast
+        integer :: k, m, iy, iyf
         real(wp) :: hs, shift
-        logical :: qok, vok, vwas, fresh, fa, resumed
+        logical :: qok, vok, vwas, fresh, fa, resumed, teed, two
 
-        ndone = 0; stat = FSYM_SUCCESS; m = ks%d * ks%n; s0 = 0
+        ndone = 0; stat = FSYM_SUCCESS; m = ks%d * ks%n; s0 = 0; teed = .false.
         if (present(step0)) s0 = step0
         qp => q; a => w(:, :, ks%ia); g => w(:, :, ks%ig)      ! descriptors made once
-        qe => w(:, :, ks%iqe); ae => w(:, :, ks%iae)
         if (.not. ks%active) then
             if (nsteps < 1) return
             ks%pc = 0
             if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
                 stat = FSYM_ERR_BAD_STEP; return
             end if
-            if (.not. (fsym_all_finite(m, q) .and. fsym_all_finite(m, v))) then
+            if (.not. entered(q, v, w(:, :, ks%iqlast), ks%have_a)) then
                 stat = FSYM_ERR_NONFINITE_STATE; return
             end if
-            if (ks%have_a) then
-                if (.not. same(m, q, w(:, :, ks%iqlast))) call fsym_kernel_invalidate(ks)
-            end if
         end if
-        hs = h
-        steps: do i = 1, max(nsteps, 1_ik)
+        hs = h; nlast = max(nsteps, 1_ik)
+        steps: do i = 1, nlast
             qok = .true.; vok = .true.; resumed = ks%active
             if (resumed) then
                 ! resume: the caller has put the requested force into its slot
@@ -98,54 +93,46 @@ contains
                 end if
                 ks%h = hs; ks%pc = 1
             end if
-            do k = ks%pc, size(op)
+            do k = ks%pc, nop
                 ks%pc = k
-                select case (op(k))
-                case (OP_DRIFT)
-                    qok = upd(q, w(:, :, ks%iqc), w(:, :, ks%iq0), c(k) * hs, v, ks%qsaved)
+                if (op(k) == OP_DRIFT) then
+                    teed = i == nlast .and. .not. ks%comp     ! q also into slot iqlast
+                    qok = upd(q, w(:, :, ks%iqc), w(:, :, ks%iq0), c(k) * hs, v, 0.0_wp, v, &
+                              .false., ks%qsaved, w(:, :, ks%iqlast), teed)
                     ks%qsaved = .true.
                     ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
-                case (OP_KICK)
-                    fresh = .not. ks%have_a
-                    if (fresh) then
-                        if (.not. evaluated(REQ_FORCE, .false.)) return
-                    end if
-                    vok = upd(v, w(:, :, ks%ivc), w(:, :, ks%iv0), c(k) * hs, a, ks%vsaved)
-                    ks%vsaved = .true.
-                    if (.not. (vok .or. forces_ok(a, .false., .false., .true.))) return
+                    cycle
+                end if
+                ! a kick: the forces it needs (slot iy; iyf: the one evaluated for it), the update
+                fa = .not. ks%have_a; iy = ks%ia; iyf = ks%ia
+                if (fa) then
+                    if (.not. evaluated(REQ_FORCE, op(k) == OP_EXTRAP_KICK)) return
+                end if
+                select case (op(k))
                 case (OP_GRAD_KICK)
-                    fa = .not. ks%have_a
-                    if (fa) then
-                        if (.not. evaluated(REQ_FORCE, .false.)) return
-                    end if
-                    fresh = .not. ks%have_g
+                    fresh = .not. ks%have_g; iyf = ks%ig
                     if (fresh) then
                         if (.not. evaluated(REQ_GRADIENT, .false.)) return
                     end if
-                    vwas = vok
-                    vok = upd2(v, w(:, :, ks%ivc), w(:, :, ks%iv0), c(k) * hs, a, &
-                               u(k) * hs**3, g, ks%vsaved)
-                    ks%vsaved = .true.
-                    if (.not. (vok .or. forces_ok(g, .true., fa, vwas))) return
                 case (OP_EXTRAP_KICK)
-                    if (.not. ks%have_a) then
-                        if (.not. evaluated(REQ_FORCE, .true.)) return
-                    end if
-                    shift = u(k) * hs * hs
+                    shift = u(k) * hs * hs; iy = ks%iae; iyf = ks%iae; fa = .false.
                     fresh = .not. ks%have_x .or. ks%xshift /= shift
                     if (fresh) then
-                        call shifted(m, q, shift, a, qe)
+                        call shifted(m, q, shift, a, w(:, :, ks%iqe))
                         ks%xshift = shift; ks%have_x = .false.
                         if (.not. evaluated(REQ_FORCE_SHIFTED, .false.)) return
                     end if
-                    vok = upd(v, w(:, :, ks%ivc), w(:, :, ks%iv0), c(k) * hs, ae, ks%vsaved)
-                    ks%vsaved = .true.
-                    if (.not. (vok .or. forces_ok(ae, .false., .false., .true.))) return
                 case default
-                    continue      ! a validated scheme has no other op codes
+                    fresh = fa; fa = .false.
                 end select
+                vwas = vok
+                two = op(k) == OP_GRAD_KICK
+                vok = upd(v, w(:, :, ks%ivc), w(:, :, ks%iv0), c(k) * hs, w(:, :, iy), &
+                          u(k) * hs**3, g, two, ks%vsaved, w(:, :, ks%iqlast), .false.)
+                ks%vsaved = .true.
+                if (.not. (vok .or. forces_ok(w(:, :, iyf), two, fa, vwas))) return
             end do
-            ks%pc = size(op) + 1
+            ks%pc = nop + 1
             if (resumed) then     ! the tests of the stages before the suspension are gone
                 qok = fsym_all_finite(m, q); vok = fsym_all_finite(m, v)
             end if
@@ -155,48 +142,51 @@ contains
             ndone = ndone + 1
             if (ndone >= nsteps) exit steps
         end do steps
-        if (ks%have_a) call copy(m, q, w(:, :, ks%iqlast))
+        if (ks%have_a .and. .not. teed) call copy(m, q, w(:, :, ks%iqlast))
 
     contains
 
-        !> x <- x + s y (compensated in e when `ks%comp`), the old x saved into x0 in the same
-        !> loop unless `saved` (after the new value: no separate copy); true when all finite.
-        logical function upd(x, e, x0, s, y, saved) result(ok)
-            real(wp), intent(inout) :: x(m), e(m), x0(m)
-            real(wp), intent(in) :: s, y(m)
-            logical, intent(in) :: saved
+        !> x <- x + s y, or x + (s y + r y2) when `two` (compensated in e when `ks%comp`); the
+        !> old x saved into x0 in the same loop unless `saved` (after the new value: no
+        !> separate copy), the new x into z when `tee`; true when all finite.
+        logical function upd(x, e, x0, s, y, r, y2, two, saved, z, tee) result(ok)
+            real(wp), intent(inout) :: x(m), e(m), x0(m), z(m)
+            real(wp), intent(in) :: s, y(m), r, y2(m)
+            logical, intent(in) :: two, saved, tee
             real(wp) :: t
             integer :: j, bad
             if (ks%comp) then
-                ok = update_comp(m, x, e, s, y); return
+                if (two) ok = update2_comp(m, x, e, s, y, r, y2)
+                if (.not. two) ok = update_comp(m, x, e, s, y)
+                return
             end if
             bad = 0
             do j = 1, m
-                t = x(j); x(j) = t + s * y(j)
+                t = x(j)
+                if (two) x(j) = t + (s * y(j) + r * y2(j))
+                if (.not. two) x(j) = t + s * y(j)
                 bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp)))
                 if (.not. saved) x0(j) = t
+                if (tee) z(j) = x(j)
             end do
             ok = bad == 0
         end function upd
 
-        !> x <- x + (s y + r z), as `upd`.
-        logical function upd2(x, e, x0, s, y, r, z, saved) result(ok)
-            real(wp), intent(inout) :: x(m), e(m), x0(m)
-            real(wp), intent(in) :: s, y(m), r, z(m)
-            logical, intent(in) :: saved
-            real(wp) :: t
-            integer :: j, bad
-            if (ks%comp) then
-                ok = update2_comp(m, x, e, s, y, r, z); return
-            end if
-            bad = 0
+        !> On entry: true when q (x) and v (y) are all finite; the cached force forgotten
+        !> unless q is bitwise the point z it belongs to (`cached`). One loop.
+        logical function entered(x, y, z, cached)
+            real(wp), intent(in) :: x(m), y(m), z(m)
+            logical, intent(in) :: cached
+            integer :: j, bad, differ
+            bad = 0; differ = 0
             do j = 1, m
-                t = x(j); x(j) = t + (s * y(j) + r * z(j))
-                bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp)))
-                if (.not. saved) x0(j) = t
+                bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp .and. &
+                                                  y(j) - y(j) == 0.0_wp)))
+                if (cached) differ = ior(differ, merge(1, 0, x(j) /= z(j)))
             end do
-            ok = bad == 0
-        end function upd2
+            entered = bad == 0
+            if (entered .and. differ /= 0) call fsym_kernel_invalidate(ks)
+        end function entered
 
         !> After a kick whose new v is not all finite: false (step undone, forces uncounted)
         !> when a force evaluated for it is not: a(q) for a gradient kick (`fa`), then y
@@ -230,7 +220,7 @@ contains
             case (REQ_GRADIENT)
                 call model%gradient(qp, a, g, mst)
             case default
-                call model%acceleration(qe, ae, mst)
+                call model%acceleration(w(:, :, ks%iqe), w(:, :, ks%iae), mst)
             end select
             evaluated = .true.
             if (mst /= 0 .or. present(recorder)) evaluated = noted(req, mst)
@@ -248,7 +238,7 @@ contains
             end if
             if (present(recorder)) then
                 x => qp
-                if (req == REQ_FORCE_SHIFTED) x => qe
+                if (req == REQ_FORCE_SHIFTED) x => w(:, :, ks%iqe)
                 call recorder%record(s0 + ndone + 1, ks%pc, merge(EVAL_GRADIENT, merge( &
                     EVAL_EXTRAPOLATED, EVAL_FORCE, req == REQ_FORCE_SHIFTED), &
                     req == REQ_GRADIENT), x)

@@ -187,8 +187,9 @@ subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
         end if
     end if
     kw = LEGACY_KC + 2 * nop
-    call fsym_kernel_run(IW(LEGACY_KO:LEGACY_KO + nop - 1), RW(LEGACY_KC:LEGACY_KC + nop - 1), &
-                         RW(LEGACY_KC + nop:kw - 1), model, ks, X, V, RW(kw), H, &
+    call fsym_kernel_run(nop, IW(LEGACY_KO:LEGACY_KO + nop - 1), &
+                         RW(LEGACY_KC:LEGACY_KC + nop - 1), RW(LEGACY_KC + nop:kw - 1), &
+                         model, ks, X, V, RW(kw), H, &
                          int(NSTEP, ik), ndone, INFO)
     IW(7) = int(ndone)
     call legacy_store(ks, IW(8:LEGACY_KO - 1), RW(1:4))
@@ -262,8 +263,9 @@ subroutine FSYMRC(ND, N, X, V, H, RW, LRW, IW, LIW, IREQ, IPNT, INFO)
         call legacy_store(ks, IW(8:LEGACY_KO - 1), RW(1:4))
         IREQ = -1; INFO = FSYM_ERR_BAD_REQUEST; return
     end if
-    call fsym_kernel_run(IW(LEGACY_KO:LEGACY_KO + nop - 1), RW(LEGACY_KC:LEGACY_KC + nop - 1), &
-                         RW(LEGACY_KC + nop:kw - 1), model, ks, X, V, RW(kw), H, 1_ik, &
+    call fsym_kernel_run(nop, IW(LEGACY_KO:LEGACY_KO + nop - 1), &
+                         RW(LEGACY_KC:LEGACY_KC + nop - 1), RW(LEGACY_KC + nop:kw - 1), &
+                         model, ks, X, V, RW(kw), H, 1_ik, &
                          ndone, INFO)
     call legacy_store(ks, IW(8:LEGACY_KO - 1), RW(1:4))
     if (INFO == KERNEL_SUSPEND) then

@@ -71,6 +71,8 @@ module fsym_stepper
         procedure :: count_step                         !! for extensions: one step completed
         procedure :: counters
             !! for extensions: read or store the counters
+        procedure, non_overridable :: account
+            !! for extensions: store the counters and count steps (one call per kernel call)
         procedure :: note_stop
             !! for extensions: whether the observer stopped the run
         procedure :: clock_state
@@ -326,6 +328,17 @@ contains
         integer(ik) :: k
         k = 1
         if (present(nsteps)) k = nsteps
+        call self%account(self%nforce, self%ngrad, h, k)
+    end subroutine count_step
+
+    !> For extensions: store the evaluation counters (nf, ng: totals since init) and count
+    !> k steps of size h (`counters` with mode 1, then `count_step`, in one call).
+    pure subroutine account(self, nf, ng, h, k)
+        class(stepper_t), intent(inout) :: self  !! the stepper
+        integer(ik), intent(in) :: nf, ng        !! force and gradient evaluations since init
+        real(wp), intent(in) :: h                !! step size
+        integer(ik), intent(in) :: k             !! steps completed
+        self%nforce = nf; self%ngrad = ng
         if (k < 1) return
         if (h /= self%h_now) then
             self%t_base = self%time()
@@ -334,7 +347,7 @@ contains
         end if
         self%k_since = self%k_since + k
         self%nsteps = self%nsteps + k
-    end subroutine count_step
+    end subroutine account
 
     !> For extensions: the evaluation counters, to be updated in place by the kernel.
     subroutine counters(self, nf, ng, mode)
