@@ -59,7 +59,7 @@ contains
         integer(ik), intent(in), optional :: step0               !! steps before this call
         real(wp), pointer, contiguous :: qp(:, :), a(:, :), g(:, :), x(:, :)
         integer(ik) :: i, s0, nlast
-        integer :: k, m, iy, iyf
+        integer :: k, m, iy, iyf, klast
         real(wp) :: hs, shift
         logical :: qok, vok, vwas, fresh, fa, resumed, teed, two
 
@@ -76,7 +76,7 @@ contains
                 stat = FSYM_ERR_NONFINITE_STATE; return
             end if
         end if
-        hs = h; nlast = max(nsteps, 1_ik)
+        hs = h; nlast = max(nsteps, 1_ik); klast = findloc(op, OP_DRIFT, dim=1, back=.true.)
         steps: do i = 1, nlast
             qok = .true.; vok = .true.; resumed = ks%active
             if (resumed) then
@@ -96,7 +96,7 @@ contains
             do k = ks%pc, nop
                 ks%pc = k
                 if (op(k) == OP_DRIFT) then
-                    teed = i == nlast .and. .not. ks%comp     ! q also into slot iqlast
+                    teed = i == nlast .and. k == klast .and. .not. ks%comp  ! q into slot iqlast
                     qok = upd(q, w(:, :, ks%iqc), w(:, :, ks%iq0), c(k) * hs, v, 0.0_wp, v, &
                               .false., ks%qsaved, w(:, :, ks%iqlast), teed)
                     ks%qsaved = .true.
