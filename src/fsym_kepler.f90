@@ -9,7 +9,7 @@ module fsym_kepler
     use fsym_status
     use fsym_force, only: force_model_t
     use fsym_kernel_state, only: kernel_state_t
-    use fsym_kernel_loops, only: fsym_loop_save, fsym_loop_same, fsym_loop_copy
+    use fsym_kernel_loops, only: fsym_loop_entry
     use fsym_scheme, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
     implicit none
     private
@@ -507,20 +507,18 @@ contains
         real(wp), dimension(FIELD_BLOCK, 3) :: x, y, a, g, e, p
         real(wp) :: chk(FIELD_BLOCK)   ! z * 0 summed over the checked values z: 0 or NaN
         real(wp) :: s, r, xs, shift
-        logical :: ha, hg, hx, ok, okall
+        logical :: ha, hg, hx, ok, okall, differ
         integer(ik) :: i, nf, ng
         integer :: d, n, j0, m, k, l
         d = ks%d; n = ks%n
         ndone = 0
         if (nsteps < 1) return
         if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) return
-        ! the entry state saved and checked in the same (vectorised) loops
-        if (.not. fsym_loop_save(d * n, q, w(:, :, ks%iq0))) return
-        if (.not. fsym_loop_save(d * n, v, w(:, :, ks%iv0))) return
-        if (ks%have_a) then
-            if (.not. fsym_loop_same(d * n, q, w(:, :, ks%iqlast))) then
-                ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
-            end if
+        ! the entry state checked, and q compared with the cached force's point, in one loop;
+        ! each block saves its entry state as it loads it (below)
+        if (.not. fsym_loop_entry(d * n, q, v, w(:, :, ks%iqlast), ks%have_a, differ)) return
+        if (differ) then
+            ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
         end if
         okall = .true.
         x = 0.0_wp; y = 0.0_wp; a = 0.0_wp; g = 0.0_wp; e = 0.0_wp; p = 0.0_wp
@@ -540,6 +538,8 @@ contains
             ha = ks%have_a; hg = ks%have_g; hx = ks%have_x; xs = ks%xshift
             nf = ks%nf; ng = ks%ng
             call to_block(d, m, q(:, j0 + 1:j0 + m), x); call to_block(d, m, v(:, j0 + 1:j0 + m), y)
+            w(:, j0 + 1:j0 + m, ks%iq0) = q(:, j0 + 1:j0 + m)   ! the entry state, in cache now
+            w(:, j0 + 1:j0 + m, ks%iv0) = v(:, j0 + 1:j0 + m)
             if (ha) call to_block(d, m, w(:, j0 + 1:j0 + m, ks%ia), a)
             if (hg) call to_block(d, m, w(:, j0 + 1:j0 + m, ks%ig), g)
             if (hx) call to_block(d, m, w(:, j0 + 1:j0 + m, ks%iae), e)
@@ -589,6 +589,7 @@ contains
             okall = okall .and. ok
             if (.not. ok) cycle
             call from_block(d, m, x, q(:, j0 + 1:j0 + m))
+            if (ha) w(:, j0 + 1:j0 + m, ks%iqlast) = q(:, j0 + 1:j0 + m)
             call from_block(d, m, y, v(:, j0 + 1:j0 + m))
             if (ha) call from_block(d, m, a, w(:, j0 + 1:j0 + m, ks%ia))
             if (hg) call from_block(d, m, g, w(:, j0 + 1:j0 + m, ks%ig))
@@ -599,6 +600,7 @@ contains
         if (.not. okall) then
             ! all or nothing: the entry state and its cache (same bits), nothing counted
             q = w(:, :, ks%iq0); v = w(:, :, ks%iv0)
+            if (ks%have_a) w(:, :, ks%iqlast) = q     ! the point of the cache, as on entry
             if (ks%have_a) call scaled_columns(d, n, -mu, q, q, w(:, :, ks%ia))
             if (ks%have_g) call scaled_columns(d, n, 4.0_wp * mu, q, w(:, :, ks%ia), &
                                                w(:, :, ks%ig))
@@ -610,7 +612,6 @@ contains
         end if
         ks%have_a = ha; ks%have_g = hg; ks%have_x = hx; ks%xshift = xs
         ks%nf = nf; ks%ng = ng
-        if (ha) call fsym_loop_copy(d * n, q, w(:, :, ks%iqlast))
         ndone = nsteps
     end subroutine advance_blocks
 

@@ -19,7 +19,7 @@ module fsym_kernel
         fsym_kernel_invalidate
     use fsym_kernel_loops, only: fsym_all_finite, copy => fsym_loop_copy, &
         shifted => fsym_loop_shifted, update_comp => fsym_loop_update_comp, &
-        update2_comp => fsym_loop_update2_comp
+        update2_comp => fsym_loop_update2_comp, entry => fsym_loop_entry
     implicit none
     private
 
@@ -72,9 +72,11 @@ contains
             if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
                 stat = FSYM_ERR_BAD_STEP; return
             end if
-            if (.not. entered(q, v, w(:, :, ks%iqlast), ks%have_a)) then
+            ! q, v finite (else refused, cache kept); the cached force kept if q is its point
+            if (.not. entry(m, q, v, w(:, :, ks%iqlast), ks%have_a, fresh)) then
                 stat = FSYM_ERR_NONFINITE_STATE; return
             end if
+            if (fresh) call fsym_kernel_invalidate(ks)
         end if
         hs = h; nlast = max(nsteps, 1_ik); klast = findloc(op, OP_DRIFT, dim=1, back=.true.)
         steps: do i = 1, nlast
@@ -171,22 +173,6 @@ contains
             end do
             ok = bad == 0
         end function upd
-
-        !> On entry: true when q (x) and v (y) are all finite; the cached force forgotten
-        !> unless q is bitwise the point z it belongs to (`cached`). One loop.
-        logical function entered(x, y, z, cached)
-            real(wp), intent(in) :: x(m), y(m), z(m)
-            logical, intent(in) :: cached
-            integer :: j, bad, differ
-            bad = 0; differ = 0
-            do j = 1, m
-                bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp .and. &
-                                                  y(j) - y(j) == 0.0_wp)))
-                if (cached) differ = ior(differ, merge(1, 0, x(j) /= z(j)))
-            end do
-            entered = bad == 0
-            if (entered .and. differ /= 0) call fsym_kernel_invalidate(ks)
-        end function entered
 
         !> After a kick whose new v is not all finite: false (step undone, forces uncounted)
         !> when a force evaluated for it is not: a(q) for a gradient kick (`fa`), then y

@@ -9,7 +9,7 @@ module fsym_kernel_loops
     private
 
     public :: fsym_all_finite, fsym_loop_copy, fsym_loop_shifted, fsym_loop_update_comp
-    public :: fsym_loop_update2_comp, fsym_loop_same, fsym_loop_save
+    public :: fsym_loop_update2_comp, fsym_loop_same, fsym_loop_save, fsym_loop_entry
 
 contains
 
@@ -49,6 +49,23 @@ contains
         end do
         ok = bad == 0
     end function fsym_loop_save
+
+    !> The check of a step's entry state in one loop: true when x (positions) and y
+    !> (velocities) are all finite; `differ` when `cached` and x is not bitwise z (the
+    !> point of the cached force).
+    logical function fsym_loop_entry(m, x, y, z, cached, differ) result(ok)
+        integer, intent(in) :: m                     !! number of values
+        real(wp), intent(in) :: x(m), y(m), z(m)     !! positions, velocities, cached point
+        logical, intent(in) :: cached                !! a force is cached
+        logical, intent(out) :: differ               !! x differs from z
+        integer :: j, bad, dif
+        bad = 0; dif = 0
+        do j = 1, m
+            bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp .and. y(j) - y(j) == 0.0_wp)))
+            if (cached) dif = ior(dif, merge(1, 0, x(j) /= z(j)))
+        end do
+        ok = bad == 0; differ = dif /= 0
+    end function fsym_loop_entry
 
     !> True when x = y value by value (a vectorised loop, no early exit).
     pure logical function fsym_loop_same(m, x, y)
