@@ -151,7 +151,12 @@ contains
         character(len=*), intent(inout), optional :: errmsg   !! message on error
         class(recorder_t), intent(inout), optional :: recorder  !! force-point recorder
         integer(ik) :: ndone
-        call advance(self, model, q, v, h, 1_ik, ndone, stat, errmsg, recorder)
+        integer :: st
+        call advance(self, model, q, v, h, 1_ik, ndone, st, recorder)
+        if (st /= FSYM_SUCCESS) then
+            call report(self, q, v, st, stat, errmsg); return
+        end if
+        if (present(stat)) stat = FSYM_SUCCESS
     end subroutine integrator_step
 
     !> `nsteps` steps of size h; stops at the first failing step, leaving the state of the
@@ -181,7 +186,11 @@ contains
             return
         end if
         if (.not. present(observer)) then
-            call advance(self, model, q, v, h, nsteps, ndone, stat, errmsg, recorder)
+            call advance(self, model, q, v, h, nsteps, ndone, st, recorder)
+            if (st /= FSYM_SUCCESS) then
+                call report(self, q, v, st, stat, errmsg); return
+            end if
+            if (present(stat)) stat = FSYM_SUCCESS
             return
         end if
         chunk = 1
@@ -189,7 +198,8 @@ contains
         left = nsteps
         if (present(stat)) stat = FSYM_SUCCESS
         do while (left > 0)
-            call advance(self, model, q, v, h, min(chunk, left), ndone, st, errmsg, recorder)
+            call advance(self, model, q, v, h, min(chunk, left), ndone, st, recorder)
+            if (st /= FSYM_SUCCESS) call report(self, q, v, st, stat, errmsg)
             if (present(stat)) stat = st
             if (st /= FSYM_SUCCESS .or. ndone < min(chunk, left)) return
             left = left - ndone
@@ -203,34 +213,31 @@ contains
     end subroutine integrator_run
 
     !> Up to `nsteps` steps in one kernel call, with the checks a call makes, the clock and
-    !> the counters; a failure is reported with the method, step and stage. The common
-    !> path is short: refusals, the guard and the recorder are apart.
-    subroutine advance(self, model, q, v, h, nsteps, ndone, stat, errmsg, recorder)
+    !> the counters. `st`: a status code (the caller reports a failure with `report`). The
+    !> common path is short: no messages, the guard and the recorder apart.
+    subroutine advance(self, model, q, v, h, nsteps, ndone, st, recorder)
         class(integrator_t), intent(inout) :: self
         class(force_model_t), intent(inout) :: model
         real(wp), intent(inout), contiguous :: q(:, :), v(:, :)
         real(wp), intent(in) :: h
         integer(ik), intent(in) :: nsteps
         integer(ik), intent(out) :: ndone
-        integer, intent(out), optional :: stat
-        character(len=*), intent(inout), optional :: errmsg
+        integer, intent(out) :: st
         class(recorder_t), intent(inout), optional :: recorder
-        integer :: st
         integer(ik) :: nfused
-        ndone = 0; nfused = 0
+        ndone = 0; nfused = 0; st = FSYM_SUCCESS
         if (.not. (self%ready .and. size(q, 1) == self%ks%d .and. size(q, 2) == self%ks%n &
                    .and. size(v, 1) == self%ks%d .and. size(v, 2) == self%ks%n)) then
-            call refuse(self, model, q, v, stat, errmsg); return
+            st = merge(FSYM_ERR_SHAPE, FSYM_ERR_NOT_INITIALIZED, self%ready); return
         end if
         if (self%needs_g) then
             if (.not. model%has_gradient()) then
-                call refuse(self, model, q, v, stat, errmsg); return
+                st = FSYM_ERR_NO_GRADIENT; return
             end if
         end if
         if (self%guard%on .or. present(recorder)) then
             call watched_run(self, model, q, v, h, nsteps, ndone, st, recorder)
         else
-            st = FSYM_SUCCESS
             if (.not. self%ks%active) then
                 if (model%has_advance()) call model%advance(self%sc%op, self%sc%c, &
                     self%sc%u, self%ks, q, v, self%w, h, nsteps, nfused)
@@ -242,31 +249,37 @@ contains
             ndone = ndone + nfused
         end if
         call self%account(self%ks%nf, self%ks%ng, h, ndone)
-        if (st /= FSYM_SUCCESS) then
-            call report_failure(self, q, v, st, stat, errmsg); return
+        if (st == KERNEL_SUSPEND) then
+            ! a model's stat that happens to be the kernel's suspend code is a failure here
+            call fsym_kernel_abort(self%ks, q, v, self%w)
+            st = FSYM_ERR_MODEL
         end if
-        if (present(stat)) stat = FSYM_SUCCESS
     end subroutine advance
 
-    !> `advance` refused: not initialised, arrays of the wrong shape, or no gradient term.
-    subroutine refuse(self, model, q, v, stat, errmsg)
-        class(integrator_t), intent(in) :: self
-        class(force_model_t), intent(inout) :: model
+    !> Report the status `st` of `advance`: a refusal (not initialised, arrays of the wrong
+    !> shape, no gradient term), the guard's refusal, or a failing step (the state is that
+    !> of the last good step).
+    subroutine report(self, q, v, st, stat, errmsg)
+        class(integrator_t), intent(inout) :: self
         real(wp), intent(in), contiguous :: q(:, :), v(:, :)
+        integer, intent(in) :: st
         integer, intent(out), optional :: stat
         character(len=*), intent(inout), optional :: errmsg
-        if (.not. self%ready) then
-            call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'integrator_t%step before init', stat, &
-                             errmsg)
-        else if (any(shape(q) /= [self%ks%d, self%ks%n]) .or. &
-                 any(shape(v) /= [self%ks%d, self%ks%n])) then
-            call fsym_report(FSYM_ERR_SHAPE, shape_text(self%ks%d, self%ks%n, q, v), stat, &
-                             errmsg)
-        else if (self%needs_g .and. .not. model%has_gradient()) then
-            call fsym_report(FSYM_ERR_NO_GRADIENT, 'method '//self%sc%name// &
-                             ': this model has no gradient term', stat, errmsg)
-        end if
-    end subroutine refuse
+        select case (st)
+        case (FSYM_ERR_NOT_INITIALIZED)
+            call fsym_report(st, 'integrator_t%step before init', stat, errmsg)
+        case (FSYM_ERR_SHAPE)
+            call fsym_report(st, shape_text(self%ks%d, self%ks%n, q, v), stat, errmsg)
+        case (FSYM_ERR_NO_GRADIENT)
+            call fsym_report(st, 'method '//self%sc%name//': this model has no gradient term', &
+                             stat, errmsg)
+        case (FSYM_ERR_STEP_TOO_LARGE)
+            call fsym_report(st, fsym_guard_message(self%guard, self%sc%name, self%time(), &
+                             self%steps() + 1), stat, errmsg)
+        case default
+            call report_step_failure(self, st, self%ks%pc == 0, stat, errmsg)
+        end select
+    end subroutine report
 
     !> The kernel with a recorder, or with the guard (step by step); no fused model steps.
     subroutine watched_run(self, model, q, v, h, nsteps, ndone, st, recorder)
@@ -286,25 +299,6 @@ contains
                                  self%steps())
         end if
     end subroutine watched_run
-
-    !> Report the failure `st` of a kernel call (the state is that of the last good step).
-    subroutine report_failure(self, q, v, st, stat, errmsg)
-        class(integrator_t), intent(inout) :: self
-        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)
-        integer, intent(in) :: st
-        integer, intent(out), optional :: stat
-        character(len=*), intent(inout), optional :: errmsg
-        if (st == KERNEL_SUSPEND) then
-            ! a model's stat that happens to be the kernel's suspend code is a failure here
-            call fsym_kernel_abort(self%ks, q, v, self%w)
-            call report_step_failure(self, FSYM_ERR_MODEL, self%ks%pc == 0, stat, errmsg)
-        else if (st == FSYM_ERR_STEP_TOO_LARGE) then
-            call fsym_report(st, fsym_guard_message(self%guard, self%sc%name, self%time(), &
-                             self%steps() + 1), stat, errmsg)
-        else
-            call report_step_failure(self, st, self%ks%pc == 0, stat, errmsg)
-        end if
-    end subroutine report_failure
 
     !> The kernel step by step, each step checked by the guard (h omega <= limit) at its
     !> start and at its end; a step that ends beyond the limit is undone (the kernel keeps
