@@ -9,7 +9,7 @@ module fsym_kepler
     use fsym_status
     use fsym_force, only: force_model_t
     use fsym_kernel_state, only: kernel_state_t
-    use fsym_kernel_loops, only: fsym_loop_entry
+    use fsym_kernel_loops, only: fsym_loop_entry, fsym_loop_copy
     use fsym_scheme, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
     implicit none
     private
@@ -538,8 +538,9 @@ contains
             ha = ks%have_a; hg = ks%have_g; hx = ks%have_x; xs = ks%xshift
             nf = ks%nf; ng = ks%ng
             call to_block(d, m, q(:, j0 + 1:j0 + m), x); call to_block(d, m, v(:, j0 + 1:j0 + m), y)
-            w(:, j0 + 1:j0 + m, ks%iq0) = q(:, j0 + 1:j0 + m)   ! the entry state, in cache now
-            w(:, j0 + 1:j0 + m, ks%iv0) = v(:, j0 + 1:j0 + m)
+            ! the entry state saved while in cache
+            call fsym_loop_copy(d * m, q(:, j0 + 1:j0 + m), w(:, j0 + 1:j0 + m, ks%iq0))
+            call fsym_loop_copy(d * m, v(:, j0 + 1:j0 + m), w(:, j0 + 1:j0 + m, ks%iv0))
             if (ha) call to_block(d, m, w(:, j0 + 1:j0 + m, ks%ia), a)
             if (hg) call to_block(d, m, w(:, j0 + 1:j0 + m, ks%ig), g)
             if (hx) call to_block(d, m, w(:, j0 + 1:j0 + m, ks%iae), e)
@@ -589,7 +590,8 @@ contains
             okall = okall .and. ok
             if (.not. ok) cycle
             call from_block(d, m, x, q(:, j0 + 1:j0 + m))
-            if (ha) w(:, j0 + 1:j0 + m, ks%iqlast) = q(:, j0 + 1:j0 + m)
+            if (ha) call fsym_loop_copy(d * m, q(:, j0 + 1:j0 + m), &
+                                        w(:, j0 + 1:j0 + m, ks%iqlast))
             call from_block(d, m, y, v(:, j0 + 1:j0 + m))
             if (ha) call from_block(d, m, a, w(:, j0 + 1:j0 + m, ks%ia))
             if (hg) call from_block(d, m, g, w(:, j0 + 1:j0 + m, ks%ig))
