@@ -66,12 +66,15 @@ cat >> "$tmp" <<'NOTES'
   the stage table inside, the model called directly through its type-bound procedures. It
   has no model-specific path. Per step it saves q and v (a failing step is undone bitwise),
   checks every force and the new state for NaN/Inf and keeps the first-same-as-last force;
-  the hand loops (`app/fsym_handloops.f90`) do none of this. The checks cost no extra pass
-  over the arrays: each update tests the values it writes in the same vectorised loop (a
-  force used by a kick is caught there, since x + s y is NaN or Inf wherever y is), the
-  check of the state on entry is the copy that saves it (`src/fsym_kernel_loops.f90`).
-  `model=user` lines measure that price: the user's model through the kernel against the
-  same model calls by hand.
+  the hand loops (`app/fsym_handloops.f90`) do none of this. None of it costs an extra pass
+  over the arrays in `run`: each update tests the values it writes in the same vectorised
+  loop (a force used by a kick is caught there, since x + s y is NaN or Inf wherever y is;
+  a(q) of a gradient kick too), the first update of q and of v in a step stores the old
+  values in the same loop, and the last drift of a call stores q as the cached force's
+  point. Per call, one loop checks q and v and compares q with that point
+  (`fsym_loop_entry`). `model=user` lines measure that price: the user's model
+  (`app/fsym_bench_models.f90`, d = 2 and 3 on explicit-shape arrays as an experienced
+  model writer does) through the kernel against the same model calls by hand.
 - `model=builtin`: the library's `kepler_model_t` has a fused stepper of its own
   (`kepler_model_t%advance`, in `src/fsym_kepler.f90`, offered the steps by
   `integrator_t%run` before the kernel): one body on scalars, more bodies in blocks of 64 in
@@ -84,10 +87,12 @@ cat >> "$tmp" <<'NOTES'
   1000 bodies it loops over blocks of 64 bodies held in L1 (each stage one vectorised loop
   over a block; the checks add z * 0 per body, no branch, and are tested once per step),
   which the `inlined/hand` lines show at about the inlined loops' speed.
-- `step/hand`: each `step` call pays the checks a call must make (initialised? shapes? the
-  cached force still valid for this q? h finite? the state finite on entry?) and, with the
-  built-in model at n = 1000, the fused stepper's set-up for a single step; use `run` (with
-  an observer every k steps if the state is needed in between).
+- `step/hand`: each `step` call pays what a call must do (initialised? shapes? the model
+  has the gradient term? h finite? the state finite on entry? the cached force still valid
+  for this q?), the call chain (`step`, the kernel, its set-up) and, with the built-in model
+  at n = 1000, the fused stepper's set-up for a single step: a fixed cost per call, large
+  against one body's step (the hand loop it is compared with takes all steps in one call);
+  use `run` (with an observer every k steps if the state is needed in between).
 - The machine is shared (2 cores, other jobs running): single ratios move by 10-30 % from
   run to run; the spread column says how much.
 - Time per step outside the force is the kernel's O(n) work; for the N-body force it is
