@@ -8,7 +8,7 @@ module fsym_kepler
     use fsym_kinds, only: wp, ik
     use fsym_status
     use fsym_force, only: force_model_t
-    use fsym_kernel_state, only: kernel_state_t
+    use fsym_kernel_state, only: kernel_state_t, fsym_kernel_invalidate
     use fsym_kernel_loops, only: fsym_loop_entry, fsym_loop_copy
     use fsym_scheme, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
     implicit none
@@ -31,11 +31,11 @@ module fsym_kepler
         procedure :: gradient => kepler_model_gradient  !! grad |a|^2 per column
         procedure :: has_gradient => kepler_model_has_gradient  !! true
         procedure :: potential => kepler_model_potential  !! sum of -mu/|q_j|
-        procedure :: has_potential => kepler_model_has_potential  !! true
+        procedure :: has_potential => kepler_model_provides  !! true
         procedure :: advance => kepler_model_advance  !! one body in d = 2, 3: fused steps
-        procedure :: has_advance => kepler_model_has_potential  !! true
+        procedure :: has_advance => kepler_model_provides  !! true
         procedure :: local_frequency => kepler_model_frequency  !! max 2 mu / r^3 over bodies
-        procedure :: has_frequency => kepler_model_has_potential  !! true
+        procedure :: has_frequency => kepler_model_provides  !! true
     end type kepler_model_t
 
     public :: kepler_acceleration, kepler_gradient, kepler_potential, kepler_energy
@@ -385,7 +385,7 @@ contains
                    ieee_is_finite(y1) .and. ieee_is_finite(y2) .and. ieee_is_finite(y3))) return
         if (ks%have_a) then
             if (any(q(:, 1) /= w(:, 1, ks%iqlast))) then
-                ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
+                call fsym_kernel_invalidate(ks)
             end if
         end if
         mu = self%mu
@@ -517,9 +517,7 @@ contains
         ! the entry state checked, and q compared with the cached force's point, in one loop;
         ! each block saves its entry state as it loads it (below)
         if (.not. fsym_loop_entry(d * n, q, v, w(:, :, ks%iqlast), ks%have_a, differ)) return
-        if (differ) then
-            ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
-        end if
+        if (differ) call fsym_kernel_invalidate(ks)
         okall = .true.
         x = 0.0_wp; y = 0.0_wp; a = 0.0_wp; g = 0.0_wp; e = 0.0_wp; p = 0.0_wp
         ha = ks%have_a; hg = ks%have_g; hx = ks%have_x; xs = ks%xshift
@@ -710,11 +708,12 @@ contains
         end do
     end subroutine kepler_model_potential
 
-    !> The Kepler model provides its potential.
-    logical function kepler_model_has_potential(self)
+    !> True: the Kepler model provides its potential, the largest local frequency (for the
+    !> step-size guard) and a fused stepper (`has_potential`, `has_frequency`, `has_advance`).
+    logical function kepler_model_provides(self)
         class(kepler_model_t), intent(in) :: self  !! the model
-        kepler_model_has_potential = .true.
-    end function kepler_model_has_potential
+        kepler_model_provides = .true.
+    end function kepler_model_provides
 
     !> Largest local frequency squared, 2 mu / r^3 over the bodies (the oscillation frequency
     !> of a radial perturbation scale at distance r), and the smallest r.

@@ -61,7 +61,7 @@ contains
         integer(ik) :: i, s0, nlast
         integer :: k, m, iy, iyf, klast
         real(wp) :: hs, shift
-        logical :: qok, vok, vwas, fresh, fa, resumed, teed, two
+        logical :: qok, vok, vwas, fresh, fa, resumed, teed, two, moved
 
         ndone = 0; stat = FSYM_SUCCESS; m = ks%d * ks%n; s0 = 0; teed = .false.
         if (present(step0)) s0 = step0
@@ -73,10 +73,10 @@ contains
                 stat = FSYM_ERR_BAD_STEP; return
             end if
             ! q, v finite (else refused, cache kept); the cached force kept if q is its point
-            if (.not. entry(m, q, v, w(:, :, ks%iqlast), ks%have_a, fresh)) then
+            if (.not. entry(m, q, v, w(:, :, ks%iqlast), ks%have_a, moved)) then
                 stat = FSYM_ERR_NONFINITE_STATE; return
             end if
-            if (fresh) call fsym_kernel_invalidate(ks)
+            if (moved) call fsym_kernel_invalidate(ks)
         end if
         hs = h; nlast = max(nsteps, 1_ik); klast = findloc(op, OP_DRIFT, dim=1, back=.true.)
         steps: do i = 1, nlast

@@ -9,7 +9,7 @@ module fsym_kernel_loops
     private
 
     public :: fsym_all_finite, fsym_loop_copy, fsym_loop_shifted, fsym_loop_update_comp
-    public :: fsym_loop_update2_comp, fsym_loop_same, fsym_loop_save, fsym_loop_entry
+    public :: fsym_loop_update2_comp, fsym_loop_entry
 
 contains
 
@@ -37,23 +37,10 @@ contains
         end do
     end subroutine fsym_loop_copy
 
-    !> y <- x; true when all values are finite (the check and the copy in one loop).
-    logical function fsym_loop_save(m, x, y) result(ok)
-        integer, intent(in) :: m                 !! number of values
-        real(wp), intent(in) :: x(m)             !! values
-        real(wp), intent(out) :: y(m)            !! copy
-        integer :: j, bad
-        bad = 0
-        do j = 1, m
-            y(j) = x(j); bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp)))
-        end do
-        ok = bad == 0
-    end function fsym_loop_save
-
     !> The check of a step's entry state in one loop: true when x (positions) and y
     !> (velocities) are all finite; `differ` when `cached` and x is not bitwise z (the
     !> point of the cached force).
-    logical function fsym_loop_entry(m, x, y, z, cached, differ) result(ok)
+    pure logical function fsym_loop_entry(m, x, y, z, cached, differ) result(ok)
         integer, intent(in) :: m                     !! number of values
         real(wp), intent(in) :: x(m), y(m), z(m)     !! positions, velocities, cached point
         logical, intent(in) :: cached                !! a force is cached
@@ -66,18 +53,6 @@ contains
         end do
         ok = bad == 0; differ = dif /= 0
     end function fsym_loop_entry
-
-    !> True when x = y value by value (a vectorised loop, no early exit).
-    pure logical function fsym_loop_same(m, x, y)
-        integer, intent(in) :: m                 !! number of values
-        real(wp), intent(in) :: x(m), y(m)       !! values to compare
-        integer :: j, differ
-        differ = 0
-        do j = 1, m
-            differ = ior(differ, merge(1, 0, x(j) /= y(j)))
-        end do
-        fsym_loop_same = differ == 0
-    end function fsym_loop_same
 
     !> z <- x + s y (the point of an extrapolated force).
     pure subroutine fsym_loop_shifted(m, x, s, y, z)
