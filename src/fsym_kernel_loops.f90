@@ -40,7 +40,7 @@ contains
     !> The check of a step's entry state in one loop: true when x (positions) and y
     !> (velocities) are all finite; `differ` when `cached` and x is not bitwise z (the
     !> point of the cached force).
-    pure logical function fsym_loop_entry(m, x, y, z, cached, differ) result(ok)
+    logical function fsym_loop_entry(m, x, y, z, cached, differ) result(ok)
         integer, intent(in) :: m                     !! number of values
         real(wp), intent(in) :: x(m), y(m), z(m)     !! positions, velocities, cached point
         logical, intent(in) :: cached                !! a force is cached
