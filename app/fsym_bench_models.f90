@@ -41,7 +41,7 @@ contains
     !> y_j = (f / |q_j|^3) x_j for every body j. As an experienced model writer would: d = 2
     !> and 3 go to loops on explicit-shape arrays, whose leading dimension the compiler
     !> knows (gfortran 12 vectorises the assumed-shape d = 3 loop with 2-lane vectors and
-    !> permutations: about 2.4 ns per body against 1.0 here).
+    !> permutations, clearly slower; see `doc/pages/force.md`).
     pure subroutine scale_by_r3(f, q, x, y)
         real(wp), intent(in) :: f                       !! factor
         real(wp), intent(in), contiguous :: q(:, :)     !! positions (d, n)
