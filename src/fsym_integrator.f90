@@ -1,6 +1,7 @@
 !> The splitting integrator: owns a scheme and all its workspace, and drives the one kernel
 !> with a user force model. `init` allocates; `step` and `run` never do.
 module fsym_integrator
+    use, intrinsic :: iso_c_binding, only: c_loc, c_intptr_t
     use fsym_kinds, only: wp, ik
     use fsym_status
     use fsym_scheme, only: scheme_t, fsym_scheme_custom, fsym_op_name
@@ -20,7 +21,8 @@ module fsym_integrator
     type, extends(stepper_t), public :: integrator_t
         private
         type(scheme_t) :: sc
-        real(wp), allocatable :: w(:, :, :)  ! the kernel's work array (d, n, slots)
+        real(wp), allocatable :: w(:)        ! the kernel's work array (d, n, slots) from w(w0)
+        integer :: w0 = 1                    ! w(w0) on a 64-byte boundary (vector loads)
         type(kernel_state_t) :: ks           ! the kernel's state
         logical :: ready = .false.
         logical :: needs_g = .false.        ! the scheme has gradient kicks
@@ -99,7 +101,7 @@ contains
 
         self%ready = .false.
         if (allocated(self%w)) deallocate (self%w)
-        allocate (self%w(d, n, ks%nslot), stat=ast)
+        allocate (self%w(int(d, ik) * n * ks%nslot + 7), stat=ast)
         if (ast /= 0) then
             call fsym_report(FSYM_ERR_NO_MEMORY, 'integrator workspace of '// &
                              fsym_int_text(ks%nslot)//' x '//fsym_int_text(d)//' x '// &
@@ -109,6 +111,7 @@ contains
         self%sc = s
         self%ks = ks
         self%w = 0.0_wp
+        self%w0 = aligned_start(self%w)
         call self%describe_stepper(s%name, d, n, .true., s%forward, s%symplectic, s%nforce, &
                                    s%ngrad, 0.0_wp)
         if (present(t0)) call self%set_time(t0)
@@ -152,7 +155,8 @@ contains
         class(recorder_t), intent(inout), optional :: recorder  !! force-point recorder
         integer(ik) :: ndone
         integer :: st
-        call advance(self, model, q, v, h, 1_ik, ndone, st, recorder)
+        st = refusal(self, q, v)
+        if (st == FSYM_SUCCESS) call advance(self, model, q, v, h, 1_ik, ndone, st, recorder)
         if (st /= FSYM_SUCCESS) then
             call report(self, q, v, st, stat, errmsg); return
         end if
@@ -185,6 +189,10 @@ contains
                              ' (must be >= 1)', stat, errmsg)
             return
         end if
+        st = refusal(self, q, v)
+        if (st /= FSYM_SUCCESS) then
+            call report(self, q, v, st, stat, errmsg); return
+        end if
         if (.not. present(observer)) then
             call advance(self, model, q, v, h, nsteps, ndone, st, recorder)
             if (st /= FSYM_SUCCESS) then
@@ -212,13 +220,27 @@ contains
         end do
     end subroutine integrator_run
 
+    !> FSYM_SUCCESS when the integrator is set up for arrays of the shape of q and v; else
+    !> why a step is refused.
+    pure integer function refusal(self, q, v) result(st)
+        class(integrator_t), intent(in) :: self
+        real(wp), intent(in), contiguous :: q(:, :), v(:, :)
+        st = FSYM_SUCCESS
+        if (.not. (self%ready .and. size(q, 1) == self%ks%d .and. size(q, 2) == self%ks%n &
+                   .and. size(v, 1) == self%ks%d .and. size(v, 2) == self%ks%n)) then
+            st = merge(FSYM_ERR_SHAPE, FSYM_ERR_NOT_INITIALIZED, self%ready)
+        end if
+    end function refusal
+
     !> Up to `nsteps` steps in one kernel call, with the checks a call makes, the clock and
-    !> the counters. `st`: a status code (the caller reports a failure with `report`). The
-    !> common path is short: no messages, the guard and the recorder apart.
+    !> the counters, on arrays of the integrator's shape (`refusal` has checked it; explicit
+    !> shape, so no array descriptor is made per call). `st`: a status code (the caller
+    !> reports a failure with `report`). The common path is short: no messages, the guard
+    !> and the recorder apart.
     subroutine advance(self, model, q, v, h, nsteps, ndone, st, recorder)
         class(integrator_t), intent(inout) :: self
         class(force_model_t), intent(inout) :: model
-        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)
+        real(wp), intent(inout) :: q(self%ks%d, self%ks%n), v(self%ks%d, self%ks%n)
         real(wp), intent(in) :: h
         integer(ik), intent(in) :: nsteps
         integer(ik), intent(out) :: ndone
@@ -226,10 +248,6 @@ contains
         class(recorder_t), intent(inout), optional :: recorder
         integer(ik) :: nfused
         ndone = 0; nfused = 0; st = FSYM_SUCCESS
-        if (.not. (self%ready .and. size(q, 1) == self%ks%d .and. size(q, 2) == self%ks%n &
-                   .and. size(v, 1) == self%ks%d .and. size(v, 2) == self%ks%n)) then
-            st = merge(FSYM_ERR_SHAPE, FSYM_ERR_NOT_INITIALIZED, self%ready); return
-        end if
         if (self%needs_g) then
             if (.not. model%has_gradient()) then
                 st = FSYM_ERR_NO_GRADIENT; return
@@ -240,18 +258,19 @@ contains
         else
             if (.not. self%ks%active) then
                 if (model%has_advance()) call model%advance(self%sc%op, self%sc%c, &
-                    self%sc%u, self%ks, q, v, self%w, h, nsteps, nfused)
+                    self%sc%u, self%ks, q, v, self%w(self%w0), h, nsteps, nfused)
             end if
             if (nfused < nsteps .or. self%ks%active) then
                 call fsym_kernel_run(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, model, &
-                                     self%ks, q, v, self%w, h, nsteps - nfused, ndone, st)
+                                     self%ks, q, v, self%w(self%w0), h, nsteps - nfused, &
+                                     ndone, st)
             end if
             ndone = ndone + nfused
         end if
         call self%account(self%ks%nf, self%ks%ng, h, ndone)
         if (st == KERNEL_SUSPEND) then
             ! a model's stat that happens to be the kernel's suspend code is a failure here
-            call fsym_kernel_abort(self%ks, q, v, self%w)
+            call fsym_kernel_abort(self%ks, q, v, self%w(self%w0))
             st = FSYM_ERR_MODEL
         end if
     end subroutine advance
@@ -285,7 +304,7 @@ contains
     subroutine watched_run(self, model, q, v, h, nsteps, ndone, st, recorder)
         class(integrator_t), intent(inout) :: self
         class(force_model_t), intent(inout) :: model
-        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)
+        real(wp), intent(inout) :: q(self%ks%d, self%ks%n), v(self%ks%d, self%ks%n)
         real(wp), intent(in) :: h
         integer(ik), intent(in) :: nsteps
         integer(ik), intent(out) :: ndone
@@ -295,7 +314,7 @@ contains
             call guarded_run(self, model, q, v, h, nsteps, ndone, st, recorder, self%steps())
         else
             call fsym_kernel_run(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, model, &
-                                 self%ks, q, v, self%w, h, nsteps, ndone, st, recorder, &
+                                 self%ks, q, v, self%w(self%w0), h, nsteps, ndone, st, recorder, &
                                  self%steps())
         end if
     end subroutine watched_run
@@ -306,7 +325,7 @@ contains
     subroutine guarded_run(self, model, q, v, h, nsteps, ndone, st, recorder, step0)
         class(integrator_t), intent(inout) :: self
         class(force_model_t), intent(inout) :: model
-        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)
+        real(wp), intent(inout) :: q(self%ks%d, self%ks%n), v(self%ks%d, self%ks%n)
         real(wp), intent(in) :: h
         integer(ik), intent(in) :: nsteps, step0
         integer(ik), intent(out) :: ndone
@@ -318,12 +337,13 @@ contains
             call fsym_guard_check(self%guard, model, q, h, st)
             if (st /= FSYM_SUCCESS) exit
             call fsym_kernel_run(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, model, &
-                                 self%ks, q, v, self%w, h, 1_ik, nd, st, recorder, step0 + ndone)
+                                 self%ks, q, v, self%w(self%w0), h, 1_ik, nd, st, recorder, &
+                                 step0 + ndone)
             if (st /= FSYM_SUCCESS) return
             call fsym_guard_check(self%guard, model, q, h, st)
             if (st /= FSYM_SUCCESS) then
                 self%ks%active = .true.        ! undo the step just taken
-                call fsym_kernel_abort(self%ks, q, v, self%w)
+                call fsym_kernel_abort(self%ks, q, v, self%w(self%w0))
                 exit
             end if
             ndone = ndone + nd
@@ -419,7 +439,7 @@ contains
         class(integrator_t), intent(in) :: self  !! the integrator
         integer(ik) :: m
         m = 0
-        if (allocated(self%w)) m = size(self%w, kind=ik)
+        if (allocated(self%w)) m = int(self%ks%d, ik) * self%ks%n * self%ks%nslot
         integrator_work_size = m
     end function integrator_work_size
 
@@ -444,7 +464,7 @@ contains
         if (.not. checkpoint_fits(self, q, v, size(ck, kind=ik), stat, errmsg)) return
         call self%clock_state(clock%t_base, clock%h_now, clock%k_since, clock%steps, 0)
         call fsym_checkpoint_pack(self%sc%op, self%sc%c, self%sc%u, self%ks, clock, q, v, &
-                                  self%w, ck)
+                                  self%w(self%w0), ck)
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine integrator_save_checkpoint
 
@@ -466,7 +486,7 @@ contains
         character(len=128) :: msg
         if (.not. checkpoint_fits(self, q, v, size(ck, kind=ik), stat, errmsg)) return
         call fsym_checkpoint_unpack(ck, self%sc%op, self%sc%c, self%sc%u, self%ks, clock, q, &
-                                    v, self%w, st, msg)
+                                    v, self%w(self%w0), st, msg)
         if (st /= FSYM_SUCCESS) then
             call fsym_report(st, msg, stat, errmsg); return
         end if
@@ -497,6 +517,14 @@ contains
             ok = .true.
         end if
     end function checkpoint_fits
+
+    !> The index of the first value of x on a 64-byte boundary (x holds at least 8 values).
+    integer function aligned_start(x) result(k)
+        real(wp), intent(in), target :: x(:)
+        integer(c_intptr_t) :: addr
+        addr = transfer(c_loc(x(1)), addr)
+        k = 1 + int(modulo(-addr, 64_c_intptr_t) / (storage_size(x) / 8))
+    end function aligned_start
 
     function shape_text(d, n, q, v) result(s)
         integer, intent(in) :: d, n

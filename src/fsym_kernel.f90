@@ -9,7 +9,7 @@
 !> `stat = KERNEL_SUSPEND` suspends the step; `ks%req` names the force the caller puts into
 !> its slot, and the next `fsym_kernel_run` resumes at that stage.
 module fsym_kernel
-    use fsym_kinds, only: wp, ik
+    use fsym_kinds, only: wp, ik, iwp
     use fsym_status
     use fsym_scheme, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
     use fsym_force, only: force_model_t, recorder_t, EVAL_FORCE, EVAL_GRADIENT, &
@@ -19,7 +19,7 @@ module fsym_kernel
         fsym_kernel_invalidate
     use fsym_kernel_loops, only: fsym_all_finite, copy => fsym_loop_copy, &
         shifted => fsym_loop_shifted, update_comp => fsym_loop_update_comp, &
-        update2_comp => fsym_loop_update2_comp, entry => fsym_loop_entry
+        update2_comp => fsym_loop_update2_comp, entry => fsym_loop_entry, same => fsym_loop_same
     implicit none
     private
 
@@ -59,12 +59,13 @@ contains
         integer(ik), intent(in), optional :: step0               !! steps before this call
         real(wp), pointer, contiguous :: qp(:, :), a(:, :), g(:, :), x(:, :)
         integer(ik) :: i, s0, nlast
-        integer :: k, m, iy, iyf, klast
+        integer :: k, m, iy, iyf, klast, mst
         real(wp) :: hs, shift
-        logical :: qok, vok, vwas, fresh, fa, resumed, teed, two, moved
+        logical :: qok, vok, vwas, fresh, fa, resumed, teed, two, moved, rec, lazy
 
-        ndone = 0; stat = FSYM_SUCCESS; m = ks%d * ks%n; s0 = 0; teed = .false.
+        ndone = 0; stat = FSYM_SUCCESS; m = ks%d * ks%n; s0 = 0; teed = .false.; lazy = .false.
         if (present(step0)) s0 = step0
+        rec = present(recorder)
         qp => q; a => w(:, :, ks%ia); g => w(:, :, ks%ig)      ! descriptors made once
         if (.not. ks%active) then
             if (nsteps < 1) return
@@ -72,13 +73,26 @@ contains
             if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
                 stat = FSYM_ERR_BAD_STEP; return
             end if
-            ! q, v finite (else refused, cache kept); the cached force kept if q is its point
-            if (.not. entry(m, q, v, w(:, :, ks%iqlast), ks%have_a, moved)) then
-                stat = FSYM_ERR_NONFINITE_STATE; return
+            ! q, v finite (else refused, cache kept); the cached force kept if q is its point.
+            ! No pass of its own (`lazy`) where the first update reads q, v before any model
+            ! call: a first drift (q + s v finite: so were q, v), or a first kick whose forces
+            ! are cached at q (q bitwise their point, so finite; v + s a finite: so was v)
+            lazy = .not. ks%comp .and. (op(1) == OP_DRIFT .or. (ks%have_a .and. &
+                   (op(1) == OP_KICK .or. (op(1) == OP_GRAD_KICK .and. ks%have_g))))
+            if (lazy .and. op(1) /= OP_DRIFT) lazy = same(m, q, w(:, :, ks%iqlast))
+            if (.not. lazy) then
+                if (.not. entry(m, q, v, w(:, :, ks%iqlast), ks%have_a, moved)) then
+                    stat = FSYM_ERR_NONFINITE_STATE; return
+                end if
+                if (moved) call fsym_kernel_invalidate(ks)
             end if
-            if (moved) call fsym_kernel_invalidate(ks)
         end if
-        hs = h; nlast = max(nsteps, 1_ik); klast = findloc(op, OP_DRIFT, dim=1, back=.true.)
+        hs = h; nlast = max(nsteps, 1_ik); klast = 0    ! the last drift, if a kick follows
+        if (op(nop) /= OP_DRIFT) then
+            do klast = nop - 1, 1, -1
+                if (op(klast) == OP_DRIFT) exit
+            end do
+        end if
         steps: do i = 1, nlast
             qok = .true.; vok = .true.; resumed = ks%active
             if (resumed) then
@@ -96,33 +110,51 @@ contains
                 ks%h = hs; ks%pc = 1
             end if
             do k = ks%pc, nop
+                if (lazy .and. k == 2) then     ! the first update has checked the entry
+                    lazy = .false.
+                    if (.not. (qok .and. vok)) then
+                        if (.not. entered()) return
+                    end if
+                end if
                 ks%pc = k
                 if (op(k) == OP_DRIFT) then
-                    teed = i == nlast .and. k == klast .and. .not. ks%comp  ! q into slot iqlast
+                    teed = i == nlast .and. k == klast .and. .not. (ks%comp .or. lazy)  ! q: iqlast
                     qok = upd(q, w(:, :, ks%iqc), w(:, :, ks%iq0), c(k) * hs, v, 0.0_wp, v, &
                               .false., ks%qsaved, w(:, :, ks%iqlast), teed)
                     ks%qsaved = .true.
                     ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
                     cycle
                 end if
-                ! a kick: the forces it needs (slot iy; iyf: the one evaluated for it), the update
+                ! a kick: the forces it needs (slot iy; iyf: the one evaluated for it; common
+                ! path inline, the rest in `noted`), the update
                 fa = .not. ks%have_a; iy = ks%ia; iyf = ks%ia
                 if (fa) then
-                    if (.not. evaluated(REQ_FORCE, op(k) == OP_EXTRAP_KICK)) return
+                    mst = 0; call model%acceleration(qp, a, mst)
+                    if (mst /= 0 .or. rec .or. op(k) == OP_EXTRAP_KICK) then
+                        if (.not. noted(REQ_FORCE, mst, op(k) == OP_EXTRAP_KICK)) return
+                    else
+                        ks%have_a = .true.; ks%nf = ks%nf + 1
+                    end if
                 end if
                 select case (op(k))
                 case (OP_GRAD_KICK)
                     fresh = .not. ks%have_g; iyf = ks%ig
                     if (fresh) then
-                        if (.not. evaluated(REQ_GRADIENT, .false.)) return
+                        mst = 0; call model%gradient(qp, a, g, mst)
+                        if (mst /= 0 .or. rec) then
+                            if (.not. noted(REQ_GRADIENT, mst, .false.)) return
+                        else
+                            ks%have_g = .true.; ks%ng = ks%ng + 1
+                        end if
                     end if
                 case (OP_EXTRAP_KICK)
                     shift = u(k) * hs * hs; iy = ks%iae; iyf = ks%iae; fa = .false.
                     fresh = .not. ks%have_x .or. ks%xshift /= shift
                     if (fresh) then
                         call shifted(m, q, shift, a, w(:, :, ks%iqe))
-                        ks%xshift = shift; ks%have_x = .false.
-                        if (.not. evaluated(REQ_FORCE_SHIFTED, .false.)) return
+                        ks%xshift = shift; ks%have_x = .false.; mst = 0
+                        call model%acceleration(w(:, :, ks%iqe), w(:, :, ks%iae), mst)
+                        if (.not. noted(REQ_FORCE_SHIFTED, mst, .false.)) return
                     end if
                 case default
                     fresh = fa; fa = .false.
@@ -156,7 +188,8 @@ contains
             real(wp), intent(in) :: s, y(m), r, y2(m)
             logical, intent(in) :: two, saved, tee
             real(wp) :: t
-            integer :: j, bad
+            integer :: j
+            integer(iwp) :: bad
             if (ks%comp) then
                 if (two) ok = update2_comp(m, x, e, s, y, r, y2)
                 if (.not. two) ok = update_comp(m, x, e, s, y)
@@ -167,11 +200,11 @@ contains
                 t = x(j)
                 if (two) x(j) = t + (s * y(j) + r * y2(j))
                 if (.not. two) x(j) = t + s * y(j)
-                bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp)))
+                bad = ior(bad, transfer(x(j) - x(j), bad))    ! see fsym_kernel_loops
                 if (.not. saved) x0(j) = t
                 if (tee) z(j) = x(j)
             end do
-            ok = bad == 0
+            ok = iand(bad, huge(bad)) == 0
         end function upd
 
         !> After a kick whose new v is not all finite: false (step undone, forces uncounted)
@@ -193,30 +226,12 @@ contains
                             fsym_all_finite(m, q) .and. (vwas .or. fy)))
         end function forces_ok
 
-        !> Evaluate what `req` names and accept it (checked when `check`); false when the
-        !> step failed (undone) or was suspended. Small, to be inlined: the rest is `noted`.
-        logical function evaluated(req, check)
-            integer, intent(in) :: req
-            logical, intent(in) :: check
-            integer :: mst
-            mst = 0
-            select case (req)
-            case (REQ_FORCE)
-                call model%acceleration(qp, a, mst)
-            case (REQ_GRADIENT)
-                call model%gradient(qp, a, g, mst)
-            case default
-                call model%acceleration(w(:, :, ks%iqe), w(:, :, ks%iae), mst)
-            end select
-            evaluated = .true.
-            if (mst /= 0 .or. present(recorder)) evaluated = noted(req, mst)
-            if (evaluated) evaluated = accepted(req, check)
-        end function evaluated
-
-        !> After an evaluation with a recorder or a non-zero model `stat`: record the point;
-        !> false when the model suspended the step or failed (the step undone).
-        logical function noted(req, mst)
+        !> After an evaluation with a recorder, a non-zero model `stat` or a force to `check`:
+        !> record the point, accept the force (`accepted`); false when the model suspended
+        !> the step or failed, or the force is not finite (the step undone).
+        logical function noted(req, mst, check)
             integer, intent(in) :: req, mst
+            logical, intent(in) :: check
             noted = .false.
             if (mst == KERNEL_SUSPEND) then
                 ks%active = .true.; ks%req = req; stat = KERNEL_SUSPEND
@@ -231,17 +246,22 @@ contains
             end if
             noted = mst == 0
             if (.not. noted) call fail(FSYM_ERR_MODEL)
+            if (noted) noted = accepted(req, check)
         end function noted
 
         !> Mark a force put into its slot valid and count it; when `check`, first check it
-        !> (false, step undone, if it is not finite).
+        !> (false, step undone, if it is not finite: the model's fault where the state is).
         logical function accepted(req, check)
             integer, intent(in) :: req
             logical, intent(in) :: check
+            integer :: slot
+            slot = merge(ks%ig, merge(ks%iae, ks%ia, req == REQ_FORCE_SHIFTED), req == REQ_GRADIENT)
             accepted = .true.
-            if (check) accepted = checked(req)
-            if (.not. accepted) return
-            if (req == REQ_GRADIENT) then
+            if (check) accepted = fsym_all_finite(m, w(:, :, slot))
+            if (.not. accepted) then
+                call fail(merge(FSYM_ERR_NONFINITE_FORCE, FSYM_ERR_NONFINITE_STATE, &
+                                fsym_all_finite(m, q) .and. fsym_all_finite(m, v)))
+            else if (req == REQ_GRADIENT) then
                 ks%have_g = .true.; ks%ng = ks%ng + 1
             else
                 ks%have_a = ks%have_a .or. req == REQ_FORCE; ks%nf = ks%nf + 1
@@ -249,18 +269,19 @@ contains
             end if
         end function accepted
 
-        !> The force in the slot `req` names is finite; else the step undone (the model's
-        !> fault only where the state is finite).
-        logical function checked(req)
-            integer, intent(in) :: req
-            integer :: slot
-            slot = ks%ia
-            if (req == REQ_GRADIENT) slot = ks%ig
-            if (req == REQ_FORCE_SHIFTED) slot = ks%iae
-            checked = fsym_all_finite(m, w(:, :, slot))
-            if (.not. checked) call fail(merge(FSYM_ERR_NONFINITE_FORCE, &
-                FSYM_ERR_NONFINITE_STATE, fsym_all_finite(m, q) .and. fsym_all_finite(m, v)))
-        end function checked
+        !> The first update of a call, checking q and v on entry (`lazy`), found a value not
+        !> finite: false, refused on entry (that update undone, the cache kept), when q or v
+        !> was not finite on entry (a drift updated q, a kick v); else the step goes on.
+        logical function entered()
+            integer :: i0
+            i0 = merge(ks%iq0, ks%iv0, op(1) == OP_DRIFT)
+            entered = fsym_all_finite(m, w(:, :, i0)) .and. fsym_all_finite(m, v)
+            if (op(1) /= OP_DRIFT) entered = fsym_all_finite(m, w(:, :, i0))
+            if (entered) return
+            if (op(1) == OP_DRIFT) call copy(m, w(:, :, i0), q)
+            if (op(1) /= OP_DRIFT) call copy(m, w(:, :, i0), v)
+            stat = FSYM_ERR_NONFINITE_STATE; ks%pc = 0
+        end function entered
 
         !> Undo the step in progress and report `code`.
         subroutine fail(code)

@@ -1,29 +1,30 @@
 !> Array loops of the splitting kernel (`fsym_kernel`) and of fused steppers: the finite
 !> check, copies, the shifted point and the compensated stage updates, each over all
 !> m = d*n values of a contiguous array (the kernel's plain updates are its own, to be
-!> inlined). x - x is 0 for a finite x and NaN for NaN or Inf (an integer flag, so the
-!> loops vectorise).
+!> inlined). The finite test: x - x is +0 or -0 for a finite x (its bits zero but for the
+!> sign) and NaN for NaN or Inf; the bits are or-ed into an integer of the same size
+!> (`iwp`), so the loops vectorise without turning comparison masks into integers.
 module fsym_kernel_loops
-    use fsym_kinds, only: wp
+    use fsym_kinds, only: wp, iwp
     implicit none
     private
 
     public :: fsym_all_finite, fsym_loop_copy, fsym_loop_shifted, fsym_loop_update_comp
-    public :: fsym_loop_update2_comp, fsym_loop_entry
+    public :: fsym_loop_update2_comp, fsym_loop_entry, fsym_loop_same
 
 contains
 
-    !> True when all m values are finite (x - x is 0 for a finite x, NaN otherwise; an
-    !> integer flag, so the loop vectorises).
+    !> True when all m values are finite (the bits of x - x are zero but for the sign).
     pure logical function fsym_all_finite(m, x)
         integer, intent(in) :: m         !! number of values
         real(wp), intent(in) :: x(m)     !! values
-        integer :: i, bad
+        integer :: i
+        integer(iwp) :: bad
         bad = 0
         do i = 1, m
-            bad = ior(bad, merge(1, 0, .not. (x(i) - x(i) == 0.0_wp)))
+            bad = ior(bad, transfer(x(i) - x(i), bad))
         end do
-        fsym_all_finite = bad == 0
+        fsym_all_finite = iand(bad, huge(bad)) == 0
     end function fsym_all_finite
 
     !> y <- x.
@@ -45,14 +46,29 @@ contains
         real(wp), intent(in) :: x(m), y(m), z(m)     !! positions, velocities, cached point
         logical, intent(in) :: cached                !! a force is cached
         logical, intent(out) :: differ               !! x differs from z
-        integer :: j, bad, dif
-        bad = 0; dif = 0
+        integer :: j
+        integer(iwp) :: bad
+        bad = 0
         do j = 1, m
-            bad = ior(bad, merge(1, 0, .not. (x(j) - x(j) == 0.0_wp .and. y(j) - y(j) == 0.0_wp)))
-            if (cached) dif = ior(dif, merge(1, 0, x(j) /= z(j)))
+            bad = ior(bad, ior(transfer(x(j) - x(j), bad), transfer(y(j) - y(j), bad)))
         end do
-        ok = bad == 0; differ = dif /= 0
+        ok = iand(bad, huge(bad)) == 0
+        differ = .false.
+        if (cached) differ = .not. fsym_loop_same(m, x, z)
     end function fsym_loop_entry
+
+    !> True when x is bitwise z.
+    pure logical function fsym_loop_same(m, x, z) result(same)
+        integer, intent(in) :: m                     !! number of values
+        real(wp), intent(in) :: x(m), z(m)           !! the two arrays
+        integer :: j
+        integer(iwp) :: dif
+        dif = 0
+        do j = 1, m
+            dif = ior(dif, ieor(transfer(x(j), dif), transfer(z(j), dif)))
+        end do
+        same = dif == 0
+    end function fsym_loop_same
 
     !> z <- x + s y (the point of an extrapolated force).
     pure subroutine fsym_loop_shifted(m, x, s, y, z)

@@ -8,4 +8,7 @@ module fsym_kinds
         !! Working precision of every real in the library (IEEE double).
     integer, parameter, public :: ik = int64
         !! Integer kind for step and evaluation counters (long runs exceed 2**31).
+    integer, parameter, public :: iwp = int64
+        !! Integer kind of the storage size of `real(wp)` (the bits of a real, for finite
+        !! tests and bitwise comparisons that vectorise).
 end module fsym_kinds
