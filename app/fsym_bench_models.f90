@@ -41,7 +41,7 @@ contains
     !> y_j = (f / |q_j|^3) x_j for every body j. As an experienced model writer would: d = 2
     !> and 3 go to loops on explicit-shape arrays, whose leading dimension the compiler
     !> knows (gfortran 12 vectorises the assumed-shape d = 3 loop with 2-lane vectors and
-    !> permutations, clearly slower; see `doc/pages/force.md`).
+    !> permutations, clearly slower; see `doc/pages/force.md`); d = 2 in blocks.
     pure subroutine scale_by_r3(f, q, x, y)
         real(wp), intent(in) :: f                       !! factor
         real(wp), intent(in), contiguous :: q(:, :)     !! positions (d, n)
@@ -62,17 +62,27 @@ contains
         end select
     end subroutine scale_by_r3
 
-    !> `scale_by_r3` in d = 2.
+    !> `scale_by_r3` in d = 2, in blocks of bodies: the factors of a block first (a loop the
+    !> compiler vectorises), then the products (one loop over interleaved (x, y) pairs is
+    !> clearly slower with AVX-512: `fsym-bench ratios`, `nspf`).
     pure subroutine scale2(n, f, q, x, y)
         integer, intent(in) :: n                        !! bodies
         real(wp), intent(in) :: f, q(2, n), x(2, n)     !! factor, positions, vectors
         real(wp), intent(out) :: y(2, n)                !! result
-        real(wp) :: r2, s
-        integer :: j
-        do j = 1, n
-            r2 = q(1, j)**2 + q(2, j)**2
-            s = f / (r2 * sqrt(r2))
-            y(1, j) = s * x(1, j); y(2, j) = s * x(2, j)
+        integer, parameter :: nb = 256                  ! bodies per block
+        real(wp) :: s(nb)
+        integer :: j, j0, k
+        do j0 = 0, n - 1, nb
+            k = min(nb, n - j0)
+            do j = 1, k
+                s(j) = q(1, j0 + j)**2 + q(2, j0 + j)**2
+            end do
+            do j = 1, k
+                s(j) = f / (s(j) * sqrt(s(j)))
+            end do
+            do j = 1, k
+                y(1, j0 + j) = s(j) * x(1, j0 + j); y(2, j0 + j) = s(j) * x(2, j0 + j)
+            end do
         end do
     end subroutine scale2
 
