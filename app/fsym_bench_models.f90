@@ -62,16 +62,24 @@ contains
         end select
     end subroutine scale_by_r3
 
-    !> `scale_by_r3` in d = 2, in blocks of bodies: the factors of a block first (a loop the
-    !> compiler vectorises), then the products (one loop over interleaved (x, y) pairs is
-    !> clearly slower with AVX-512: `fsym-bench ratios`, `nspf`).
+    !> `scale_by_r3` in d = 2: a few bodies in one loop; many in blocks, the factors of a
+    !> block first (a loop the compiler vectorises), then the products (one loop over the
+    !> interleaved (x, y) pairs is clearly slower with AVX-512: `fsym-bench ratios`, `nspf`).
     pure subroutine scale2(n, f, q, x, y)
         integer, intent(in) :: n                        !! bodies
         real(wp), intent(in) :: f, q(2, n), x(2, n)     !! factor, positions, vectors
         real(wp), intent(out) :: y(2, n)                !! result
         integer, parameter :: nb = 256                  ! bodies per block
-        real(wp) :: s(nb)
+        real(wp) :: s(nb), r2
         integer :: j, j0, k
+        if (n < 64) then
+            do j = 1, n
+                r2 = q(1, j)**2 + q(2, j)**2
+                s(1) = f / (r2 * sqrt(r2))
+                y(1, j) = s(1) * x(1, j); y(2, j) = s(1) * x(2, j)
+            end do
+            return
+        end if
         do j0 = 0, n - 1, nb
             k = min(nb, n - j0)
             do j = 1, k
