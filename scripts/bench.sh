@@ -71,10 +71,23 @@ cat >> "$tmp" <<'NOTES'
   loop (a force used by a kick is caught there, since x + s y is NaN or Inf wherever y is;
   a(q) of a gradient kick too), the first update of q and of v in a step stores the old
   values in the same loop, and the last drift of a call stores q as the cached force's
-  point. Per call, one loop checks q and v and compares q with that point
-  (`fsym_loop_entry`). `model=user` lines measure that price: the user's model
-  (`app/fsym_bench_models.f90`, d = 2 and 3 on explicit-shape arrays as an experienced
-  model writer does) through the kernel against the same model calls by hand.
+  point. The finite test ors the bits of x - x into an integer (zero but for the sign
+  when x is finite), which vectorises without turning comparison masks into integers.
+  Per call, the state must be finite on entry: where the first update reads q and v
+  before any model call (a first drift, or a first kick whose forces are cached at q,
+  checked by one bitwise comparison of q with their point) that update's own test is the
+  check; otherwise one loop checks q and v (`fsym_loop_entry`). `step` and `run` hand
+  the kernel explicit-shape arrays (no array descriptors made per call), the model
+  calls of the common path are written in the stage loop, and the work array starts on
+  a 64-byte boundary. `model=user` lines measure what remains: the user's model
+  (`app/fsym_bench_models.f90`, d = 2 and 3 on explicit-shape arrays, d = 2 in blocks of
+  bodies, as an experienced model writer does) through the kernel against the same model
+  calls by hand.
+- What remains at 1000 bodies is memory traffic: in d = 3 each array is 24 kB, the
+  step's working set (q, v, the force, the saved q and v) does not fit in a 48 kB L1, and
+  the loops run at L2 speed. The saved q and v are two more streams per step than the
+  hand loop's (it neither checks nor undoes), which is the price of a failing step
+  leaving the state bitwise intact.
 - `model=builtin`: the library's `kepler_model_t` has a fused stepper of its own
   (`kepler_model_t%advance`, in `src/fsym_kepler.f90`, offered the steps by
   `integrator_t%run` before the kernel): one body on scalars, more bodies in blocks of 64 in
@@ -89,9 +102,11 @@ cat >> "$tmp" <<'NOTES'
   which the `inlined/hand` lines show at about the inlined loops' speed.
 - `step/hand`: each `step` call pays what a call must do (initialised? shapes? the model
   has the gradient term? h finite? the state finite on entry? the cached force still valid
-  for this q?), the call chain (`step`, the kernel, its set-up) and, with the built-in model
-  at n = 1000, the fused stepper's set-up for a single step: a fixed cost per call, large
-  against one body's step (the hand loop it is compared with takes all steps in one call);
+  for this q?), the call chain (`step`, `advance`, the kernel, its set-up), for methods
+  that start with a kick the comparison of q with the cached force's point, and, with the
+  built-in model at n = 1000, the fused stepper's set-up for a single step: a fixed cost
+  per call, large against one body's step (the hand loop it is compared with takes all
+  steps in one call);
   use `run` (with an observer every k steps if the state is needed in between).
 - The machine is shared (2 cores, other jobs running): single ratios move by 10-30 % from
   run to run; the spread column says how much.

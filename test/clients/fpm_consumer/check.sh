@@ -43,14 +43,14 @@ else say "ldd: $(ldd "$exe" | awk '{print $1}' | tr '\n' ' ')"; fi
 # Control: the same checks detect LAPACK where it is linked, and per-program pruning of app/.
 cd "$root"
 fpm build --flag "$flags" --verbose > "$tmp/self.log" 2>&1 || { cat "$tmp/self.log"; exit 1; }
-stab=$(grep -E -- "-o [^ ]*app/fsym-stability( |$)" "$tmp/self.log" | tail -1)
-solar=$(grep -E -- "-o [^ ]*app/fsym-solar( |$)" "$tmp/self.log" | tail -1)
+stab=$(grep -E -- "-o [^ ]*app/fsym-stability( |$)" "$tmp/self.log" | tail -1 || true)
+solar=$(grep -E -- "-o [^ ]*app/fsym-solar( |$)" "$tmp/self.log" | tail -1 || true)
 if [ -z "$stab" ] || [ -z "$solar" ]; then
     # already built: force the link lines by removing the two executables
     find build -type f \( -name fsym-stability -o -name fsym-solar \) -path '*app*' -delete
     fpm build --flag "$flags" --verbose > "$tmp/self.log" 2>&1
-    stab=$(grep -E -- "-o [^ ]*app/fsym-stability( |$)" "$tmp/self.log" | tail -1)
-    solar=$(grep -E -- "-o [^ ]*app/fsym-solar( |$)" "$tmp/self.log" | tail -1)
+    stab=$(grep -E -- "-o [^ ]*app/fsym-stability( |$)" "$tmp/self.log" | tail -1 || true)
+    solar=$(grep -E -- "-o [^ ]*app/fsym-solar( |$)" "$tmp/self.log" | tail -1 || true)
 fi
 if grep -qE -- '-llapack' <<< "$stab"; then say "control: fsym-stability links -llapack (detected)"
 else say "FAIL: control: -llapack not found on fsym-stability's link line"; status=1; fi
