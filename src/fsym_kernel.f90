@@ -19,7 +19,8 @@ module fsym_kernel
         fsym_kernel_invalidate
     use fsym_kernel_loops, only: fsym_all_finite, copy => fsym_loop_copy, &
         shifted => fsym_loop_shifted, update_comp => fsym_loop_update_comp, &
-        update2_comp => fsym_loop_update2_comp, entry => fsym_loop_entry, same => fsym_loop_same
+        update2_comp => fsym_loop_update2_comp, entry => fsym_loop_entry, same => fsym_loop_same, &
+        exchange => fsym_loop_exchange
     implicit none
     private
 
@@ -57,16 +58,22 @@ contains
         integer, intent(out) :: stat                             !! status
         class(recorder_t), intent(inout), optional :: recorder   !! force-point recorder
         integer(ik), intent(in), optional :: step0               !! steps before this call
-        real(wp), pointer, contiguous :: qp(:, :), a(:, :), g(:, :), x(:, :)
+        real(wp), pointer, contiguous :: qp(:, :), a(:, :), g(:, :), x(:, :), qo(:, :), vc(:, :)
+        real(wp), pointer, contiguous :: vo(:, :), tp(:, :)
         integer(ik) :: i, s0, nlast
         integer :: k, m, iy, iyf, klast, mst
         real(wp) :: hs, shift
-        logical :: qok, vok, vwas, fresh, fa, resumed, teed, two, moved, rec, lazy
+        logical :: qok, vok, vwas, fresh, fa, resumed, teed, two, moved, rec, lazy, sw
 
         ndone = 0; stat = FSYM_SUCCESS; m = ks%d * ks%n; s0 = 0; teed = .false.; lazy = .false.
         if (present(step0)) s0 = step0
         rec = present(recorder)
         qp => q; a => w(:, :, ks%ia); g => w(:, :, ks%ig)      ! descriptors made once
+        ! swap mode (`sw`, runs of steps): the first update of q (v) in a step writes into the
+        ! other buffer (slot iq0, iv0, or the caller's array), which becomes current (qp, vc),
+        ! so the state of the step's start stays where it was, with no copy; `settle` ends it
+        qo => w(:, :, ks%iq0); vc => v; vo => w(:, :, ks%iv0)
+        sw = nsteps > 1 .and. .not. (ks%comp .or. ks%active)
         if (.not. ks%active) then
             if (nsteps < 1) return
             ks%pc = 0
@@ -119,8 +126,9 @@ contains
                 ks%pc = k
                 if (op(k) == OP_DRIFT) then
                     teed = i == nlast .and. k == klast .and. .not. (ks%comp .or. lazy)  ! q: iqlast
-                    qok = upd(q, w(:, :, ks%iqc), w(:, :, ks%iq0), c(k) * hs, v, 0.0_wp, v, &
-                              .false., ks%qsaved, w(:, :, ks%iqlast), teed)
+                    qok = upd(qp, w(:, :, ks%iqc), qo, c(k) * hs, vc, 0.0_wp, vc, .false., &
+                              ks%qsaved, w(:, :, ks%iqlast), teed)
+                    if (sw .and. .not. ks%qsaved) then; tp => qp; qp => qo; qo => tp; end if
                     ks%qsaved = .true.
                     ks%have_a = .false.; ks%have_g = .false.; ks%have_x = .false.
                     cycle
@@ -151,7 +159,7 @@ contains
                     shift = u(k) * hs * hs; iy = ks%iae; iyf = ks%iae; fa = .false.
                     fresh = .not. ks%have_x .or. ks%xshift /= shift
                     if (fresh) then
-                        call shifted(m, q, shift, a, w(:, :, ks%iqe))
+                        call shifted(m, qp, shift, a, w(:, :, ks%iqe))
                         ks%xshift = shift; ks%have_x = .false.; mst = 0
                         call model%acceleration(w(:, :, ks%iqe), w(:, :, ks%iae), mst)
                         if (.not. noted(REQ_FORCE_SHIFTED, mst, .false.)) return
@@ -161,14 +169,15 @@ contains
                 end select
                 vwas = vok
                 two = op(k) == OP_GRAD_KICK
-                vok = upd(v, w(:, :, ks%ivc), w(:, :, ks%iv0), c(k) * hs, w(:, :, iy), &
-                          u(k) * hs**3, g, two, ks%vsaved, w(:, :, ks%iqlast), .false.)
+                vok = upd(vc, w(:, :, ks%ivc), vo, c(k) * hs, w(:, :, iy), u(k) * hs**3, g, two, &
+                          ks%vsaved, w(:, :, ks%iqlast), .false.)
+                if (sw .and. .not. ks%vsaved) then; tp => vc; vc => vo; vo => tp; end if
                 ks%vsaved = .true.
                 if (.not. (vok .or. forces_ok(w(:, :, iyf), two, fa, vwas))) return
             end do
             ks%pc = nop + 1
             if (resumed) then     ! the tests of the stages before the suspension are gone
-                qok = fsym_all_finite(m, q); vok = fsym_all_finite(m, v)
+                qok = fsym_all_finite(m, qp); vok = fsym_all_finite(m, vc)
             end if
             if (.not. (qok .and. vok)) then
                 call fail(FSYM_ERR_NONFINITE_STATE); return
@@ -176,13 +185,15 @@ contains
             ndone = ndone + 1
             if (ndone >= nsteps) exit steps
         end do steps
+        call settle()
         if (ks%have_a .and. .not. teed) call copy(m, q, w(:, :, ks%iqlast))
 
     contains
 
         !> x <- x + s y, or x + (s y + r y2) when `two` (compensated in e when `ks%comp`); the
         !> old x saved into x0 in the same loop unless `saved` (after the new value: no
-        !> separate copy), the new x into z when `tee`; true when all finite.
+        !> separate copy), or in swap mode the new x into x0 instead (x kept); the new x into
+        !> z when `tee`; true when all finite.
         logical function upd(x, e, x0, s, y, r, y2, two, saved, z, tee) result(ok)
             real(wp), intent(inout) :: x(m), e(m), x0(m), z(m)
             real(wp), intent(in) :: s, y(m), r, y2(m)
@@ -196,14 +207,23 @@ contains
                 return
             end if
             bad = 0
-            do j = 1, m
-                t = x(j)
-                if (two) x(j) = t + (s * y(j) + r * y2(j))
-                if (.not. two) x(j) = t + s * y(j)
-                bad = ior(bad, transfer(x(j) - x(j), bad))    ! see fsym_kernel_loops
-                if (.not. saved) x0(j) = t
-                if (tee) z(j) = x(j)
-            end do
+            if (sw .and. .not. saved) then
+                do j = 1, m
+                    if (two) x0(j) = x(j) + (s * y(j) + r * y2(j))
+                    if (.not. two) x0(j) = x(j) + s * y(j)
+                    bad = ior(bad, transfer(x0(j) - x0(j), bad))
+                    if (tee) z(j) = x0(j)
+                end do
+            else
+                do j = 1, m
+                    t = x(j)
+                    if (two) x(j) = t + (s * y(j) + r * y2(j))
+                    if (.not. two) x(j) = t + s * y(j)
+                    bad = ior(bad, transfer(x(j) - x(j), bad))    ! see fsym_kernel_loops
+                    if (.not. saved) x0(j) = t
+                    if (tee) z(j) = x(j)
+                end do
+            end if
             ok = iand(bad, huge(bad)) == 0
         end function upd
 
@@ -223,7 +243,7 @@ contains
             if (grad .and. fresh) ks%ng = ks%ng - 1
             if (.not. (fy .and. grad)) ks%nf = ks%nf - 1
             call fail(merge(FSYM_ERR_NONFINITE_FORCE, FSYM_ERR_NONFINITE_STATE, &
-                            fsym_all_finite(m, q) .and. (vwas .or. fy)))
+                            fsym_all_finite(m, qp) .and. (vwas .or. fy)))
         end function forces_ok
 
         !> After an evaluation with a recorder, a non-zero model `stat` or a force to `check`:
@@ -234,6 +254,7 @@ contains
             logical, intent(in) :: check
             noted = .false.
             if (mst == KERNEL_SUSPEND) then
+                call settle()
                 ks%active = .true.; ks%req = req; stat = KERNEL_SUSPEND
                 return
             end if
@@ -260,7 +281,7 @@ contains
             if (check) accepted = fsym_all_finite(m, w(:, :, slot))
             if (.not. accepted) then
                 call fail(merge(FSYM_ERR_NONFINITE_FORCE, FSYM_ERR_NONFINITE_STATE, &
-                                fsym_all_finite(m, q) .and. fsym_all_finite(m, v)))
+                                fsym_all_finite(m, qp) .and. fsym_all_finite(m, vc)))
             else if (req == REQ_GRADIENT) then
                 ks%have_g = .true.; ks%ng = ks%ng + 1
             else
@@ -274,6 +295,7 @@ contains
         !> was not finite on entry (a drift updated q, a kick v); else the step goes on.
         logical function entered()
             integer :: i0
+            call settle()
             i0 = merge(ks%iq0, ks%iv0, op(1) == OP_DRIFT)
             entered = fsym_all_finite(m, w(:, :, i0)) .and. fsym_all_finite(m, v)
             if (op(1) /= OP_DRIFT) entered = fsym_all_finite(m, w(:, :, i0))
@@ -283,9 +305,18 @@ contains
             stat = FSYM_ERR_NONFINITE_STATE; ks%pc = 0
         end function entered
 
+        !> End swap mode: the current state into the caller's arrays, the state of the step's
+        !> start into slots iq0, iv0 (as saved without swap mode).
+        subroutine settle()
+            if (.not. associated(qp, q)) call exchange(m, q, qp)
+            if (.not. associated(vc, v)) call exchange(m, v, vc)
+            qp => q; qo => w(:, :, ks%iq0); vc => v; vo => w(:, :, ks%iv0); sw = .false.
+        end subroutine settle
+
         !> Undo the step in progress and report `code`.
         subroutine fail(code)
             integer, intent(in) :: code
+            call settle()
             ks%active = .true.
             call fsym_kernel_abort(ks, q, v, w)
             stat = code

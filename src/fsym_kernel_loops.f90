@@ -10,7 +10,7 @@ module fsym_kernel_loops
     private
 
     public :: fsym_all_finite, fsym_loop_copy, fsym_loop_shifted, fsym_loop_update_comp
-    public :: fsym_loop_update2_comp, fsym_loop_entry, fsym_loop_same
+    public :: fsym_loop_update2_comp, fsym_loop_entry, fsym_loop_same, fsym_loop_exchange
 
 contains
 
@@ -26,6 +26,17 @@ contains
         end do
         fsym_all_finite = iand(bad, huge(bad)) == 0
     end function fsym_all_finite
+
+    !> x <-> y.
+    pure subroutine fsym_loop_exchange(m, x, y)
+        integer, intent(in) :: m                 !! number of values
+        real(wp), intent(inout) :: x(m), y(m)    !! the two arrays
+        real(wp) :: t
+        integer :: j
+        do j = 1, m
+            t = x(j); x(j) = y(j); y(j) = t
+        end do
+    end subroutine fsym_loop_exchange
 
     !> y <- x.
     pure subroutine fsym_loop_copy(m, x, y)
