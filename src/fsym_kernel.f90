@@ -11,16 +11,15 @@
 module fsym_kernel
     use fsym_kinds, only: wp, ik, iwp
     use fsym_status
-    use fsym_scheme, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
+    use fsym_scheme, only: OP_DRIFT, OP_GRAD_KICK, OP_EXTRAP_KICK
     use fsym_force, only: force_model_t, recorder_t, EVAL_FORCE, EVAL_GRADIENT, &
                           EVAL_EXTRAPOLATED
     use fsym_kernel_state, only: kernel_state_t, KERNEL_SUSPEND, REQ_NONE, REQ_FORCE, &
         REQ_GRADIENT, REQ_FORCE_SHIFTED, fsym_kernel_layout, fsym_kernel_abort, &
-        fsym_kernel_invalidate
+        fsym_kernel_invalidate, fsym_kernel_entry, fsym_kernel_refused, fsym_kernel_last_drift
     use fsym_kernel_loops, only: fsym_all_finite, copy => fsym_loop_copy, &
         shifted => fsym_loop_shifted, update_comp => fsym_loop_update_comp, &
-        update2_comp => fsym_loop_update2_comp, entry => fsym_loop_entry, same => fsym_loop_same, &
-        exchange => fsym_loop_exchange
+        update2_comp => fsym_loop_update2_comp, exchange => fsym_loop_exchange
     implicit none
     private
 
@@ -42,7 +41,8 @@ contains
     !> non-finite force (the stage fails) from a non-finite state (the step fails at its end,
     !> as the last drift's and the last kick's tests say); a(q) of a gradient kick is in its
     !> update too. Other forces are checked at once. The first update of q and of v in a step
-    !> saves the old values in the same loop (the state the step restores on failure).
+    !> saves the old values in the same loop (the state the step restores on failure), or,
+    !> in a run of steps, writes into the other buffer of two (`sw`, swap mode).
     subroutine fsym_kernel_run(nop, op, c, u, model, ks, q, v, w, h, nsteps, ndone, stat, &
                                recorder, step0)
         integer, intent(in) :: nop                               !! number of stages
@@ -63,7 +63,7 @@ contains
         integer(ik) :: i, s0, nlast
         integer :: k, m, iy, iyf, klast, mst
         real(wp) :: hs, shift
-        logical :: qok, vok, vwas, fresh, fa, resumed, teed, two, moved, rec, lazy, sw
+        logical :: qok, vok, vwas, fresh, fa, resumed, teed, two, rec, lazy, sw
 
         ndone = 0; stat = FSYM_SUCCESS; m = ks%d * ks%n; s0 = 0; teed = .false.; lazy = .false.
         if (present(step0)) s0 = step0
@@ -80,26 +80,11 @@ contains
             if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
                 stat = FSYM_ERR_BAD_STEP; return
             end if
-            ! q, v finite (else refused, cache kept); the cached force kept if q is its point.
-            ! No pass of its own (`lazy`) where the first update reads q, v before any model
-            ! call: a first drift (q + s v finite: so were q, v), or a first kick whose forces
-            ! are cached at q (q bitwise their point, so finite; v + s a finite: so was v)
-            lazy = .not. ks%comp .and. (op(1) == OP_DRIFT .or. (ks%have_a .and. &
-                   (op(1) == OP_KICK .or. (op(1) == OP_GRAD_KICK .and. ks%have_g))))
-            if (lazy .and. op(1) /= OP_DRIFT) lazy = same(m, q, w(:, :, ks%iqlast))
-            if (.not. lazy) then
-                if (.not. entry(m, q, v, w(:, :, ks%iqlast), ks%have_a, moved)) then
-                    stat = FSYM_ERR_NONFINITE_STATE; return
-                end if
-                if (moved) call fsym_kernel_invalidate(ks)
+            if (.not. fsym_kernel_entry(op(1), ks, q, v, w, lazy)) then   ! q, v finite?
+                stat = FSYM_ERR_NONFINITE_STATE; return
             end if
         end if
-        hs = h; nlast = max(nsteps, 1_ik); klast = 0    ! the last drift, if a kick follows
-        if (op(nop) /= OP_DRIFT) then
-            do klast = nop - 1, 1, -1
-                if (op(klast) == OP_DRIFT) exit
-            end do
-        end if
+        hs = h; nlast = max(nsteps, 1_ik); klast = fsym_kernel_last_drift(op)
         steps: do i = 1, nlast
             qok = .true.; vok = .true.; resumed = ks%active
             if (resumed) then
@@ -120,7 +105,10 @@ contains
                 if (lazy .and. k == 2) then     ! the first update has checked the entry
                     lazy = .false.
                     if (.not. (qok .and. vok)) then
-                        if (.not. entered()) return
+                        call settle()
+                        if (fsym_kernel_refused(op(1), ks, q, v, w)) then
+                            stat = FSYM_ERR_NONFINITE_STATE; return
+                        end if
                     end if
                 end if
                 ks%pc = k
@@ -289,21 +277,6 @@ contains
                 ks%have_x = ks%have_x .or. req == REQ_FORCE_SHIFTED
             end if
         end function accepted
-
-        !> The first update of a call, checking q and v on entry (`lazy`), found a value not
-        !> finite: false, refused on entry (that update undone, the cache kept), when q or v
-        !> was not finite on entry (a drift updated q, a kick v); else the step goes on.
-        logical function entered()
-            integer :: i0
-            call settle()
-            i0 = merge(ks%iq0, ks%iv0, op(1) == OP_DRIFT)
-            entered = fsym_all_finite(m, w(:, :, i0)) .and. fsym_all_finite(m, v)
-            if (op(1) /= OP_DRIFT) entered = fsym_all_finite(m, w(:, :, i0))
-            if (entered) return
-            if (op(1) == OP_DRIFT) call copy(m, w(:, :, i0), q)
-            if (op(1) /= OP_DRIFT) call copy(m, w(:, :, i0), v)
-            stat = FSYM_ERR_NONFINITE_STATE; ks%pc = 0
-        end function entered
 
         !> End swap mode: the current state into the caller's arrays, the state of the step's
         !> start into slots iq0, iv0 (as saved without swap mode).

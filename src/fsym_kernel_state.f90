@@ -1,15 +1,18 @@
 !> The state of the one splitting kernel (`fsym_kernel`): where each array lives in the
 !> caller's work array, what the force cache holds, the step in progress and the counters;
-!> and what is done to it outside a step: set up, forget the cache, undo a suspended step.
+!> and what is done to it outside a step: set up, the check of a call's entry state, forget
+!> the cache, undo a suspended step.
 !> Apart from the kernel so that a force model's own fused stepper (`force_model_t%advance`)
 !> can advance it as the kernel would.
 module fsym_kernel_state
     use fsym_kinds, only: wp, ik
-    use fsym_scheme, only: OP_GRAD_KICK, OP_EXTRAP_KICK
+    use fsym_scheme, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
+    use fsym_kernel_loops, only: fsym_all_finite, fsym_loop_entry, fsym_loop_same, fsym_loop_copy
     implicit none
     private
 
     public :: fsym_kernel_layout, fsym_kernel_invalidate, fsym_kernel_abort
+    public :: fsym_kernel_entry, fsym_kernel_refused, fsym_kernel_last_drift
 
     integer, parameter, public :: KERNEL_SUSPEND = -1  !! model stat / kernel stat: suspended
     integer, parameter, public :: REQ_NONE = 0           !! no force outstanding
@@ -64,6 +67,57 @@ contains
             ks%ivc0 = ks%nslot + 4; ks%nslot = ks%nslot + 4
         end if
     end subroutine fsym_kernel_layout
+
+    !> The check of the entry state of a kernel call (a new step): false when q or v is not
+    !> finite (refused, the cache kept); the cache forgotten when q is not bitwise its point.
+    !> `lazy`: no pass of its own, the first update of the call is the check (it reads q and
+    !> v before any model call: a first drift, q + s v finite only if q and v are, s being
+    !> finite; or a first kick whose forces are cached at q, q bitwise their point and so
+    !> finite, v + s a finite only if v is); `fsym_kernel_refused` then decides.
+    logical function fsym_kernel_entry(op1, ks, q, v, w, lazy) result(ok)
+        integer, intent(in) :: op1                                   !! the first op code
+        type(kernel_state_t), intent(inout) :: ks                    !! kernel state
+        real(wp), intent(in) :: q(ks%d * ks%n), v(ks%d * ks%n)       !! state
+        real(wp), intent(in) :: w(ks%d * ks%n, ks%nslot)             !! work array
+        logical, intent(out) :: lazy                                 !! checked by the update
+        logical :: moved
+        ok = .true.
+        lazy = .not. ks%comp .and. (op1 == OP_DRIFT .or. (ks%have_a .and. &
+               (op1 == OP_KICK .or. (op1 == OP_GRAD_KICK .and. ks%have_g))))
+        if (lazy .and. op1 /= OP_DRIFT) lazy = fsym_loop_same(size(q), q, w(:, ks%iqlast))
+        if (lazy) return
+        ok = fsym_loop_entry(size(q), q, v, w(:, ks%iqlast), ks%have_a, moved)
+        if (ok .and. moved) call fsym_kernel_invalidate(ks)
+    end function fsym_kernel_entry
+
+    !> After the first update of a `lazy` call found a value that is not finite (q, v as
+    !> saved without swap mode): true, refused on entry (`ks%pc` = 0; the update undone, the
+    !> cache kept), when q or v was not finite on entry; false when the step overflowed.
+    logical function fsym_kernel_refused(op1, ks, q, v, w) result(refused)
+        integer, intent(in) :: op1                                   !! the first op code
+        type(kernel_state_t), intent(inout) :: ks                    !! kernel state
+        real(wp), intent(inout) :: q(ks%d * ks%n), v(ks%d * ks%n)    !! state
+        real(wp), intent(in) :: w(ks%d * ks%n, ks%nslot)             !! work array
+        integer :: i0
+        i0 = merge(ks%iq0, ks%iv0, op1 == OP_DRIFT)      ! a drift updated q first, a kick v
+        refused = .not. fsym_all_finite(size(q), w(:, i0))
+        if (op1 == OP_DRIFT) refused = refused .or. .not. fsym_all_finite(size(v), v)
+        if (.not. refused) return
+        if (op1 == OP_DRIFT) call fsym_loop_copy(size(q), w(:, i0), q)
+        if (op1 /= OP_DRIFT) call fsym_loop_copy(size(v), w(:, i0), v)
+        ks%pc = 0
+    end function fsym_kernel_refused
+
+    !> The stage of the last drift of a table when a kick follows it (a force is then
+    !> evaluated at the final q of a step), else 0.
+    pure integer function fsym_kernel_last_drift(op) result(k)
+        integer, intent(in) :: op(:)                                 !! op codes
+        k = 0
+        if (op(size(op)) == OP_DRIFT) return
+        do k = size(op) - 1, 1, -1
+            if (op(k) == OP_DRIFT) exit
+        end do
+    end function fsym_kernel_last_drift
 
     !> Forget every cached force (after changing the model's parameters between steps).
     pure subroutine fsym_kernel_invalidate(ks)
