@@ -69,8 +69,10 @@ cat >> "$tmp" <<'NOTES'
   the hand loops (`app/fsym_handloops.f90`) do none of this. None of it costs an extra pass
   over the arrays in `run`: each update tests the values it writes in the same vectorised
   loop (a force used by a kick is caught there, since x + s y is NaN or Inf wherever y is;
-  a(q) of a gradient kick too), the first update of q and of v in a step stores the old
-  values in the same loop, and the last drift of a call stores q as the cached force's
+  a(q) of a gradient kick too); in a call of one step the first update of q and of v
+  stores the old values in the same loop, in a call of several steps it writes its
+  result into the other of two buffers (swap mode: the step's start stays where it was,
+  with no store of its own); the last drift of a call stores q as the cached force's
   point. The finite test ors the bits of x - x into an integer (zero but for the sign
   when x is finite), which vectorises without turning comparison masks into integers.
   Per call, the state must be finite on entry: where the first update reads q and v
@@ -83,11 +85,13 @@ cat >> "$tmp" <<'NOTES'
   (`app/fsym_bench_models.f90`, d = 2 and 3 on explicit-shape arrays, d = 2 in blocks of
   bodies, as an experienced model writer does) through the kernel against the same model
   calls by hand.
-- What remains at 1000 bodies is memory traffic: in d = 3 each array is 24 kB, the
-  step's working set (q, v, the force, the saved q and v) does not fit in a 48 kB L1, and
-  the loops run at L2 speed. The saved q and v are two more streams per step than the
-  hand loop's (it neither checks nor undoes), which is the price of a failing step
-  leaving the state bitwise intact.
+- At 1000 bodies the update loops are bound by stores (each array is 16 kB in d = 2,
+  24 kB in d = 3; the step's working set does not fit in a 48 kB L1): every extra stream
+  of stores costs about as much as an update. Swap mode is why `run` stores no more per
+  step than the hand loop. A `step` call cannot avoid it: it must keep the state of its
+  start somewhere and leave its end state in the caller's arrays, one more store of q
+  and of v than a hand loop that overwrites them, the price of a failing step leaving
+  the state bitwise intact.
 - `model=builtin`: the library's `kepler_model_t` has a fused stepper of its own
   (`kepler_model_t%advance`, in `src/fsym_kepler.f90`, offered the steps by
   `integrator_t%run` before the kernel): one body on scalars, more bodies in blocks of 64 in

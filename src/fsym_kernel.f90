@@ -69,9 +69,8 @@ contains
         if (present(step0)) s0 = step0
         rec = present(recorder)
         qp => q; a => w(:, :, ks%ia); g => w(:, :, ks%ig)      ! descriptors made once
-        ! swap mode (`sw`, runs of steps): the first update of q (v) in a step writes into the
-        ! other buffer (slot iq0, iv0, or the caller's array), which becomes current (qp, vc),
-        ! so the state of the step's start stays where it was, with no copy; `settle` ends it
+        ! swap mode (`sw`): a step's first update of q (v) writes into the other buffer (slot
+        ! or caller's array; current: qp, vc), the step's start stays there; `settle` ends it
         qo => w(:, :, ks%iq0); vc => v; vo => w(:, :, ks%iv0)
         sw = nsteps > 1 .and. .not. (ks%comp .or. ks%active)
         if (.not. ks%active) then
@@ -281,6 +280,7 @@ contains
         !> End swap mode: the current state into the caller's arrays, the state of the step's
         !> start into slots iq0, iv0 (as saved without swap mode).
         subroutine settle()
+            if (.not. sw) return
             if (.not. associated(qp, q)) call exchange(m, q, qp)
             if (.not. associated(vc, v)) call exchange(m, v, vc)
             qp => q; qo => w(:, :, ks%iq0); vc => v; vo => w(:, :, ks%iv0); sw = .false.
