@@ -16,7 +16,7 @@ module fsym_kernel
                           EVAL_EXTRAPOLATED
     use fsym_kernel_state, only: kernel_state_t, KERNEL_SUSPEND, REQ_NONE, REQ_FORCE, &
         REQ_GRADIENT, REQ_FORCE_SHIFTED, fsym_kernel_layout, fsym_kernel_abort, &
-        fsym_kernel_invalidate, fsym_kernel_entry, fsym_kernel_refused, fsym_kernel_last_drift
+        fsym_kernel_invalidate, fsym_kernel_entry, fsym_kernel_refused
     use fsym_kernel_loops, only: fsym_all_finite, copy => fsym_loop_copy, &
         shifted => fsym_loop_shifted, update_comp => fsym_loop_update_comp, &
         update2_comp => fsym_loop_update2_comp, exchange => fsym_loop_exchange
@@ -61,7 +61,7 @@ contains
         real(wp), pointer, contiguous :: qp(:, :), a(:, :), g(:, :), x(:, :), qo(:, :), vc(:, :)
         real(wp), pointer, contiguous :: vo(:, :), tp(:, :)
         integer(ik) :: i, s0, nlast
-        integer :: k, m, iy, iyf, klast, mst
+        integer :: k, m, iy, iyf, mst
         real(wp) :: hs, shift
         logical :: qok, vok, vwas, fresh, fa, resumed, teed, two, rec, lazy, sw
 
@@ -72,7 +72,7 @@ contains
         ! swap mode (`sw`): a step's first update of q (v) writes into the other buffer (slot
         ! or caller's array; current: qp, vc), the step's start stays there; `settle` ends it
         qo => w(:, :, ks%iq0); vc => v; vo => w(:, :, ks%iv0)
-        sw = nsteps > 1 .and. .not. (ks%comp .or. ks%active)
+        sw = nsteps > 1 .and. m >= 64 .and. .not. (ks%comp .or. ks%active)   ! (small m: saves)
         if (.not. ks%active) then
             if (nsteps < 1) return
             ks%pc = 0
@@ -83,7 +83,7 @@ contains
                 stat = FSYM_ERR_NONFINITE_STATE; return
             end if
         end if
-        hs = h; nlast = max(nsteps, 1_ik); klast = fsym_kernel_last_drift(op)
+        hs = h; nlast = max(nsteps, 1_ik)
         steps: do i = 1, nlast
             qok = .true.; vok = .true.; resumed = ks%active
             if (resumed) then
@@ -112,7 +112,7 @@ contains
                 end if
                 ks%pc = k
                 if (op(k) == OP_DRIFT) then
-                    teed = i == nlast .and. k == klast .and. .not. (ks%comp .or. lazy)  ! q: iqlast
+                    teed = i == nlast .and. k == ks%klast .and. .not. (ks%comp .or. lazy)  ! iqlast
                     qok = upd(qp, w(:, :, ks%iqc), qo, c(k) * hs, vc, 0.0_wp, vc, .false., &
                               ks%qsaved, w(:, :, ks%iqlast), teed)
                     if (sw .and. .not. ks%qsaved) then; tp => qp; qp => qo; qo => tp; end if

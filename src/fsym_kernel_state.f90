@@ -5,9 +5,9 @@
 !> Apart from the kernel so that a force model's own fused stepper (`force_model_t%advance`)
 !> can advance it as the kernel would.
 module fsym_kernel_state
-    use fsym_kinds, only: wp, ik
+    use fsym_kinds, only: wp, ik, iwp
     use fsym_scheme, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
-    use fsym_kernel_loops, only: fsym_all_finite, fsym_loop_entry, fsym_loop_same, fsym_loop_copy
+    use fsym_kernel_loops, only: fsym_all_finite, fsym_loop_entry, fsym_loop_copy
     implicit none
     private
 
@@ -31,6 +31,9 @@ module fsym_kernel_state
         integer :: iqlast = 1               !! slot: q the cached force belongs to
         integer :: iqc = 1, ivc = 1         !! slots: compensation terms of q, v
         integer :: iqc0 = 1, ivc0 = 1       !! slots: compensation terms on entry
+        integer :: klast = 0
+            !! the last drift when a kick follows (`fsym_kernel_last_drift`; 0: q is stored
+            !! as the cached force's point at the end of a call instead of by that drift)
         logical :: comp = .false.           !! Kahan-compensated updates
         logical :: have_a = .false., have_g = .false., have_x = .false.
             !! slots ia, ig, iae hold valid forces
@@ -54,7 +57,7 @@ contains
         logical, intent(in) :: compensated           !! Kahan-compensated updates
         integer, intent(in) :: d, n                  !! dimensions, particles
         type(kernel_state_t), intent(out) :: ks      !! the new state
-        ks%d = d; ks%n = n; ks%comp = compensated
+        ks%d = d; ks%n = n; ks%comp = compensated; ks%klast = fsym_kernel_last_drift(op)
         ks%ia = 1; ks%iq0 = 2; ks%iv0 = 3; ks%iqlast = 4; ks%nslot = 4
         if (any(op == OP_GRAD_KICK)) then
             ks%ig = 5; ks%nslot = 5
@@ -84,11 +87,24 @@ contains
         ok = .true.
         lazy = .not. ks%comp .and. (op1 == OP_DRIFT .or. (ks%have_a .and. &
                (op1 == OP_KICK .or. (op1 == OP_GRAD_KICK .and. ks%have_g))))
-        if (lazy .and. op1 /= OP_DRIFT) lazy = fsym_loop_same(size(q), q, w(:, ks%iqlast))
+        if (lazy .and. op1 /= OP_DRIFT) lazy = same(size(q), q, w(:, ks%iqlast))
         if (lazy) return
         ok = fsym_loop_entry(size(q), q, v, w(:, ks%iqlast), ks%have_a, moved)
         if (ok .and. moved) call fsym_kernel_invalidate(ks)
     end function fsym_kernel_entry
+
+    !> True when x is bitwise z.
+    pure logical function same(m, x, z)
+        integer, intent(in) :: m
+        real(wp), intent(in) :: x(m), z(m)
+        integer :: j
+        integer(iwp) :: dif
+        dif = 0
+        do j = 1, m
+            dif = ior(dif, ieor(transfer(x(j), dif), transfer(z(j), dif)))
+        end do
+        same = dif == 0
+    end function same
 
     !> After the first update of a `lazy` call found a value that is not finite (q, v as
     !> saved without swap mode): true, refused on entry (`ks%pc` = 0; the update undone, the

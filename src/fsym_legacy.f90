@@ -147,6 +147,7 @@ subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
     use fsym_kinds, only: wp, ik
     use fsym_scheme, only: OP_GRAD_KICK
     use fsym_kernel, only: kernel_state_t, fsym_kernel_run
+    use fsym_kernel_state, only: fsym_kernel_last_drift
     use fsym_legacy_work, only: legacy_check, legacy_load, legacy_store, legacy_model_t, &
                                 LEGACY_KO, LEGACY_KC
     use fsym_legacy_api, only: fsym_legacy_accel, fsym_legacy_grad, FSYMG0
@@ -178,6 +179,7 @@ subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
     if (ks%active) then
         INFO = FSYM_ERR_BAD_REQUEST; return     ! a reverse-communication step is open
     end if
+    ks%klast = fsym_kernel_last_drift(IW(LEGACY_KO:LEGACY_KO + nop - 1))   ! not in IW
     model%accel => ACCEL
     model%grad => GRAD
     if (associated(model%grad, FSYMG0)) then
