@@ -1,13 +1,10 @@
 !> The one splitting kernel: a loop over steps with the loop over the stage table inside,
-!> calling the force model directly; it knows no model. The modern integrator, the F77 face
-!> (EXTERNAL routines in a small model type), reverse communication and the C face run it.
-!> State: `kernel_state_t` (`fsym_kernel_state`) with a caller-owned work array
-!> `w(d, n, nslot)`. A step never allocates and does no I/O; it completes or leaves q, v
-!> (and the compensation terms) bitwise as on entry: every force and new state is checked
-!> for NaN/Inf, a model's non-zero `stat` undoes it. The end-of-step force is reused when q
-!> is bitwise unchanged (first-same-as-last). Resumable form: a model's evaluation setting
-!> `stat = KERNEL_SUSPEND` suspends the step; `ks%req` names the force the caller puts into
-!> its slot, and the next `fsym_kernel_run` resumes at that stage.
+!> calling the force model directly; it knows no model. Every face runs it (modern, F77,
+!> reverse communication, C). State: `kernel_state_t` (`fsym_kernel_state`), work array
+!> `w(d, n, nslot)` of the caller. A step never allocates and does no I/O; it completes or
+!> leaves q, v bitwise as on entry (every force and new state checked for NaN/Inf; a model's
+!> `stat` undoes it). The end-of-step force is reused while q is bitwise unchanged. A model's
+!> `stat = KERNEL_SUSPEND` suspends the step (`ks%req`: the force the caller supplies).
 module fsym_kernel
     use fsym_kinds, only: wp, ik, iwp
     use fsym_status
@@ -16,7 +13,7 @@ module fsym_kernel
                           EVAL_EXTRAPOLATED
     use fsym_kernel_state, only: kernel_state_t, KERNEL_SUSPEND, REQ_NONE, REQ_FORCE, &
         REQ_GRADIENT, REQ_FORCE_SHIFTED, fsym_kernel_layout, fsym_kernel_abort, &
-        fsym_kernel_invalidate, fsym_kernel_entry, fsym_kernel_refused
+        fsym_kernel_invalidate, fsym_kernel_entry, fsym_kernel_refused, fsym_kernel_keep
     use fsym_kernel_loops, only: fsym_all_finite, copy => fsym_loop_copy, &
         shifted => fsym_loop_shifted, update_comp => fsym_loop_update_comp, &
         update2_comp => fsym_loop_update2_comp, exchange => fsym_loop_exchange
@@ -30,19 +27,16 @@ module fsym_kernel
 
 contains
 
-    !> Take up to `nsteps` steps of size h (or resume a suspended step and go on). On return
-    !> `ndone` steps are complete. On failure `stat` is an `FSYM_ERR_*` code, q and v are the
-    !> state after `ndone` steps, and `ks%pc` names the failing stage (0: refused on entry,
-    !> nop + 1: the new state). `stat = KERNEL_SUSPEND`: the model suspended the step
-    !> (`ks%req`). `step0` numbers the steps for the recorder (step0 + 1 is the first).
-    !> Checks: every update tests its new values in the same loop. A force evaluated for a
-    !> kick is checked by that test: x + s y is NaN or Inf wherever y is (NaN * s is NaN for
-    !> any s, Inf * s is Inf, or NaN when s = 0), so a failed test looks at y itself to tell a
-    !> non-finite force (the stage fails) from a non-finite state (the step fails at its end,
-    !> as the last drift's and the last kick's tests say); a(q) of a gradient kick is in its
-    !> update too. Other forces are checked at once. The first update of q and of v in a step
-    !> saves the old values in the same loop (the state the step restores on failure), or,
-    !> in a run of steps, writes into the other buffer of two (`sw`, swap mode).
+    !> Take up to `nsteps` steps of size h (or resume a suspended step and go on); `ndone`
+    !> are complete. On failure `stat` is an `FSYM_ERR_*` code, q and v the state after
+    !> `ndone` steps, `ks%pc` the failing stage (0: refused on entry, nop + 1: the new state).
+    !> `stat = KERNEL_SUSPEND`: suspended (`ks%req`). `step0`: steps before, for the recorder.
+    !> Every update tests its new values in the same loop; a force used by a kick is checked
+    !> by that test (x + s y is NaN or Inf wherever y is), and a failed test looks at y to
+    !> tell a non-finite force (the stage fails) from a non-finite state (the step fails at
+    !> its end); other forces are checked at once. The first update of q and of v in a step
+    !> saves the old values in the same loop, or, in a run of steps, writes into the other
+    !> buffer of two (`sw`, swap mode): the state the step restores on failure.
     subroutine fsym_kernel_run(nop, op, c, u, model, ks, q, v, w, h, nsteps, ndone, stat, &
                                recorder, step0)
         integer, intent(in) :: nop                               !! number of stages
@@ -69,10 +63,10 @@ contains
         if (present(step0)) s0 = step0
         rec = present(recorder)
         qp => q; a => w(:, :, ks%ia); g => w(:, :, ks%ig)      ! descriptors made once
-        ! swap mode (`sw`): a step's first update of q (v) writes into the other buffer (slot
-        ! or caller's array; current: qp, vc), the step's start stays there; `settle` ends it
+        ! swap mode (`sw`, runs of steps on 64 values or more): a step's first update of q (v)
+        ! writes into the other buffer (current: qp, vc), the start stays; `settle` ends it
+        sw = nsteps > 1 .and. m >= 64 .and. .not. (ks%comp .or. ks%active)
         qo => w(:, :, ks%iq0); vc => v; vo => w(:, :, ks%iv0)
-        sw = nsteps > 1 .and. m >= 64 .and. .not. (ks%comp .or. ks%active)   ! (small m: saves)
         if (.not. ks%active) then
             if (nsteps < 1) return
             ks%pc = 0
@@ -93,11 +87,7 @@ contains
                 ks%active = .false.; ks%req = REQ_NONE
             else
                 ks%qsaved = ks%comp; ks%vsaved = ks%comp      ! compensated: all saved here
-                if (ks%comp) then
-                    call copy(m, q, w(:, :, ks%iq0)); call copy(m, v, w(:, :, ks%iv0))
-                    call copy(m, w(:, :, ks%iqc), w(:, :, ks%iqc0))
-                    call copy(m, w(:, :, ks%ivc), w(:, :, ks%ivc0))
-                end if
+                if (ks%comp) call fsym_kernel_keep(ks, q, v, w)
                 ks%h = hs; ks%pc = 1
             end if
             do k = ks%pc, nop
@@ -164,7 +154,7 @@ contains
             end do
             ks%pc = nop + 1
             if (resumed) then     ! the tests of the stages before the suspension are gone
-                qok = fsym_all_finite(m, qp); vok = fsym_all_finite(m, vc)
+                qok = fsym_all_finite(m, q); vok = fsym_all_finite(m, v)
             end if
             if (.not. (qok .and. vok)) then
                 call fail(FSYM_ERR_NONFINITE_STATE); return
@@ -172,15 +162,14 @@ contains
             ndone = ndone + 1
             if (ndone >= nsteps) exit steps
         end do steps
-        call settle()
+        if (sw) call settle()
         if (ks%have_a .and. .not. teed) call copy(m, q, w(:, :, ks%iqlast))
 
     contains
 
-        !> x <- x + s y, or x + (s y + r y2) when `two` (compensated in e when `ks%comp`); the
-        !> old x saved into x0 in the same loop unless `saved` (after the new value: no
-        !> separate copy), or in swap mode the new x into x0 instead (x kept); the new x into
-        !> z when `tee`; true when all finite.
+        !> x <- x + s y, or x + (s y + r y2) when `two` (compensated in e when `ks%comp`), the
+        !> old x into x0 unless `saved`; in swap mode the first update writes the new x into
+        !> x0 instead (x kept). The new x into z when `tee`; true when all finite.
         logical function upd(x, e, x0, s, y, r, y2, two, saved, z, tee) result(ok)
             real(wp), intent(inout) :: x(m), e(m), x0(m), z(m)
             real(wp), intent(in) :: s, y(m), r, y2(m)
@@ -267,8 +256,9 @@ contains
             accepted = .true.
             if (check) accepted = fsym_all_finite(m, w(:, :, slot))
             if (.not. accepted) then
+                call settle()
                 call fail(merge(FSYM_ERR_NONFINITE_FORCE, FSYM_ERR_NONFINITE_STATE, &
-                                fsym_all_finite(m, qp) .and. fsym_all_finite(m, vc)))
+                                fsym_all_finite(m, q) .and. fsym_all_finite(m, v)))
             else if (req == REQ_GRADIENT) then
                 ks%have_g = .true.; ks%ng = ks%ng + 1
             else

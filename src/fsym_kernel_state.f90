@@ -12,7 +12,7 @@ module fsym_kernel_state
     private
 
     public :: fsym_kernel_layout, fsym_kernel_invalidate, fsym_kernel_abort
-    public :: fsym_kernel_entry, fsym_kernel_refused, fsym_kernel_last_drift
+    public :: fsym_kernel_entry, fsym_kernel_refused, fsym_kernel_last_drift, fsym_kernel_keep
 
     integer, parameter, public :: KERNEL_SUSPEND = -1  !! model stat / kernel stat: suspended
     integer, parameter, public :: REQ_NONE = 0           !! no force outstanding
@@ -134,6 +134,16 @@ contains
             if (op(k) == OP_DRIFT) exit
         end do
     end function fsym_kernel_last_drift
+
+    !> At the start of a compensated step: keep q, v and the compensation terms (slots iq0,
+    !> iv0, iqc0, ivc0), the state the step restores on failure.
+    pure subroutine fsym_kernel_keep(ks, q, v, w)
+        type(kernel_state_t), intent(in) :: ks                   !! kernel state
+        real(wp), intent(in) :: q(ks%d, ks%n), v(ks%d, ks%n)     !! state
+        real(wp), intent(inout) :: w(ks%d, ks%n, ks%nslot)       !! work array
+        w(:, :, ks%iq0) = q; w(:, :, ks%iv0) = v
+        w(:, :, ks%iqc0) = w(:, :, ks%iqc); w(:, :, ks%ivc0) = w(:, :, ks%ivc)
+    end subroutine fsym_kernel_keep
 
     !> Forget every cached force (after changing the model's parameters between steps).
     pure subroutine fsym_kernel_invalidate(ks)
