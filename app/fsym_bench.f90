@@ -1,10 +1,12 @@
 !> Engine benchmarks, printed as markdown: (1) ratios of the library against hand-written
 !> loops (FR, A, C, A6, BM; d = 2, 3; n = 1, 1000; the built-in Kepler model and a user's
 !> model), (2) a direct-summation N-body force (time per step and the share of the step
-!> spent outside the force), (3) resident memory over a long run.
+!> spent outside the force), (3) resident memory over a long run, (4) the cost of the
+!> kernel's kinds of update loop and of two forms of a force loop on this machine.
 !>
-!> Usage: fsym-bench [all|ratios|nbody|memory|steps] [nsteps or repetitions]
-!>   `ratios [NREP]` the ratio lines (NREP repetitions, default 21);
+!> Usage: fsym-bench [all|ratios|loops|nbody|memory|steps] [nsteps or repetitions]
+!>   `ratios [NREP]` the ratio lines (NREP repetitions, default 21); `loops [NREP]` the
+!>   loop lines;
 !>   `memory NSTEPS` runs FR on the paper orbit for NSTEPS steps and prints VmRSS/VmHWM at
 !>   checkpoints 0, 1e3, 1e4, ...; `steps NSTEPS` the same run without checkpoints (for
 !>   valgrind heap counts: run it with two different NSTEPS, compare the allocations).
@@ -14,6 +16,7 @@ program fsym_bench
     use fsym_bench_models, only: user_kepler_t
     use fsym_bench_ratios, only: bench_ratios
     use fsym_nbody_bench, only: bench_nbody
+    use fsym_bench_loops, only: bench_loops
     implicit none
 
     character(len=32) :: what, arg
@@ -32,12 +35,16 @@ program fsym_bench
         call bench_ratios(int(max(1_ik, min(nmem, 1000_ik))))
     case ('nbody')
         call bench_nbody()
+    case ('loops')
+        if (command_argument_count() < 2) nmem = 21
+        call bench_loops(int(max(1_ik, min(nmem, 1000_ik))))
     case ('memory')
         call bench_memory(nmem, .true.)
     case ('steps')
         call bench_memory(nmem, .false.)
     case default
         call bench_ratios(21)
+        call bench_loops(21)
         call bench_nbody()
     end select
 

@@ -7,6 +7,8 @@ module fsym_bench_models
     implicit none
     private
 
+    public :: scale2, scale3
+
     !> Bodies attracted by a fixed centre of parameter mu, one column of q per body.
     type, extends(force_model_t), public :: user_kepler_t
         real(wp) :: mu = 1.0_wp   !! G M of the centre
@@ -63,8 +65,8 @@ contains
     end subroutine scale_by_r3
 
     !> `scale_by_r3` in d = 2: a few bodies in one loop; many in blocks, the factors of a
-    !> block first (a loop the compiler vectorises), then the products (one loop over the
-    !> interleaved (x, y) pairs is clearly slower with AVX-512: `fsym-bench ratios`, `nspf`).
+    !> block first, then the products (one loop over the interleaved (x, y) pairs is slower
+    !> on arrays that come from L2, as in a step: `fsym-bench loops`, the `d=2` lines).
     pure subroutine scale2(n, f, q, x, y)
         integer, intent(in) :: n                        !! bodies
         real(wp), intent(in) :: f, q(2, n), x(2, n)     !! factor, positions, vectors

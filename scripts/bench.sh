@@ -2,9 +2,10 @@
 # Engine benchmarks (a benchmark, not a test): builds fsym-bench in release mode.
 #   bash scripts/bench.sh --ratios [NREP]   print the ratio lines only (library against
 #                                           hand-written loops; NREP repetitions, default 21)
-#   bash scripts/bench.sh                   write doc/benchmarks.md (the ratios, N-body
-#                                           scaling, memory: VmRSS over 1e7 steps and valgrind
-#                                           heap counts for 1e3 vs 1e5 steps); a few minutes
+#   bash scripts/bench.sh                   write doc/benchmarks.md (the ratios, the loops,
+#                                           N-body scaling, memory: VmRSS over 1e7 steps and
+#                                           valgrind heap counts for 1e3 vs 1e5 steps); a few
+#                                           minutes
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/setup.sh
@@ -85,13 +86,15 @@ cat >> "$tmp" <<'NOTES'
   (`app/fsym_bench_models.f90`, d = 2 and 3 on explicit-shape arrays, d = 2 in blocks of
   bodies, as an experienced model writer does) through the kernel against the same model
   calls by hand.
-- At 1000 bodies the update loops are bound by stores (each array is 16 kB in d = 2,
-  24 kB in d = 3; the step's working set does not fit in a 48 kB L1): every extra stream
-  of stores costs about as much as an update. Swap mode is why `run` stores no more per
-  step than the hand loop. A `step` call cannot avoid it: it must keep the state of its
-  start somewhere and leave its end state in the caller's arrays, one more store of q
-  and of v than a hand loop that overwrites them, the price of a failing step leaving
-  the state bitwise intact.
+- At 1000 bodies a step's working set does not fit in L1, and the update loops run at L2
+  speed, where a stream of stores is dear: the section Loops (`fsym-bench loops`) shows
+  an update that also stores the old values (the save) costing about twice a plain
+  update, and one that writes into another array (swap mode) little more than a plain
+  one; arrays off a 64-byte boundary cost more again (the work array is aligned). Swap
+  mode is why `run` stores no more per step than the hand loop. A `step` call cannot
+  avoid the save: it must keep the state of its start somewhere and leave its end state
+  in the caller's arrays, one more store of q and of v than a hand loop that overwrites
+  them, the price of a failing step leaving the state bitwise intact.
 - `model=builtin`: the library's `kepler_model_t` has a fused stepper of its own
   (`kepler_model_t%advance`, in `src/fsym_kepler.f90`, offered the steps by
   `integrator_t%run` before the kernel): one body on scalars, more bodies in blocks of 64 in
