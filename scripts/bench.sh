@@ -65,15 +65,17 @@ cat >> "$tmp" <<'NOTES'
 
 - One kernel (`src/fsym_kernel.f90`) runs every model: a loop over steps with the loop over
   the stage table inside, the model called directly through its type-bound procedures. It
-  has no model-specific path. Per step it saves q and v (a failing step is undone bitwise),
+  has no model-specific path. Per step it keeps q and v of the step's start (a failing
+  step is undone bitwise),
   checks every force and the new state for NaN/Inf and keeps the first-same-as-last force;
   the hand loops (`app/fsym_handloops.f90`) do none of this. None of it costs an extra pass
   over the arrays in `run`: each update tests the values it writes in the same vectorised
   loop (a force used by a kick is caught there, since x + s y is NaN or Inf wherever y is;
   a(q) of a gradient kick too); in a call of one step the first update of q and of v
-  stores the old values in the same loop, in a call of several steps it writes its
-  result into the other of two buffers (swap mode: the step's start stays where it was,
-  with no store of its own); the last drift of a call stores q as the cached force's
+  stores the old values in the same loop, in a call of several steps (on 64 values or
+  more) it writes its result into the other of two buffers (swap mode: the step's start
+  stays where it was, with no store of its own); the last drift of a call stores q as the
+  cached force's
   point. The finite test ors the bits of x - x into an integer (zero but for the sign
   when x is finite), which vectorises without turning comparison masks into integers.
   Per call, the state must be finite on entry: where the first update reads q and v
@@ -113,8 +115,8 @@ cat >> "$tmp" <<'NOTES'
   that start with a kick the comparison of q with the cached force's point, and, with the
   built-in model at n = 1000, the fused stepper's set-up for a single step: a fixed cost
   per call, large against one body's step (the hand loop it is compared with takes all
-  steps in one call);
-  use `run` (with an observer every k steps if the state is needed in between).
+  steps in one call); use `run` (with an observer every k steps if the state is needed
+  in between).
 - The machine is shared (2 cores, other jobs running): single ratios move by 10-30 % from
   run to run; the spread column says how much.
 - Time per step outside the force is the kernel's O(n) work; for the N-body force it is
