@@ -73,6 +73,7 @@ contains
 
     !> The check of the entry state of a kernel call (a new step): false when q or v is not
     !> finite (refused, the cache kept); the cache forgotten when q is not bitwise its point.
+    !> (The kernel takes the first case below itself, without this call.)
     !> `lazy`: no pass of its own, the first update of the call is the check (it reads q and
     !> v before any model call: a first drift, q + s v finite only if q and v are, s being
     !> finite; or a first kick whose forces are cached at q, q bitwise their point and so
