@@ -73,7 +73,7 @@ contains
             if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
                 stat = FSYM_ERR_BAD_STEP; return
             end if
-            lazy = op(1) == OP_DRIFT .and. .not. ks%comp    ! checked by the first drift
+            lazy = op(1) == OP_DRIFT .and. .not. ks%comp    ! the first drift is the check
             if (.not. lazy) then
                 if (.not. fsym_kernel_entry(op(1), ks, q, v, w, lazy)) then   ! q, v finite?
                     stat = FSYM_ERR_NONFINITE_STATE; return

@@ -10,7 +10,7 @@ module fsym_kernel_loops
     private
 
     public :: fsym_all_finite, fsym_loop_copy, fsym_loop_shifted, fsym_loop_update_comp
-    public :: fsym_loop_update2_comp, fsym_loop_entry, fsym_loop_exchange
+    public :: fsym_loop_update2_comp, fsym_loop_entry, fsym_loop_same, fsym_loop_exchange
 
 contains
 
@@ -65,13 +65,21 @@ contains
         end do
         ok = iand(bad, huge(bad)) == 0
         differ = .false.
-        if (.not. cached) return
-        bad = 0
-        do j = 1, m
-            bad = ior(bad, ieor(transfer(x(j), bad), transfer(z(j), bad)))
-        end do
-        differ = bad /= 0
+        if (cached) differ = .not. fsym_loop_same(m, x, z)
     end function fsym_loop_entry
+
+    !> True when x is bitwise z.
+    pure logical function fsym_loop_same(m, x, z) result(same)
+        integer, intent(in) :: m                     !! number of values
+        real(wp), intent(in) :: x(m), z(m)           !! the two arrays
+        integer :: j
+        integer(iwp) :: dif
+        dif = 0
+        do j = 1, m
+            dif = ior(dif, ieor(transfer(x(j), dif), transfer(z(j), dif)))
+        end do
+        same = dif == 0
+    end function fsym_loop_same
 
     !> z <- x + s y (the point of an extrapolated force).
     pure subroutine fsym_loop_shifted(m, x, s, y, z)

@@ -5,9 +5,10 @@
 !> Apart from the kernel so that a force model's own fused stepper (`force_model_t%advance`)
 !> can advance it as the kernel would.
 module fsym_kernel_state
-    use fsym_kinds, only: wp, ik, iwp
+    use fsym_kinds, only: wp, ik
     use fsym_scheme, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
-    use fsym_kernel_loops, only: fsym_all_finite, fsym_loop_entry, fsym_loop_copy
+    use fsym_kernel_loops, only: fsym_all_finite, fsym_loop_entry, fsym_loop_same, &
+                                 fsym_loop_copy
     implicit none
     private
 
@@ -71,13 +72,12 @@ contains
         end if
     end subroutine fsym_kernel_layout
 
-    !> The check of the entry state of a kernel call (a new step): false when q or v is not
-    !> finite (refused, the cache kept); the cache forgotten when q is not bitwise its point.
-    !> (The kernel takes the first case below itself, without this call.)
-    !> `lazy`: no pass of its own, the first update of the call is the check (it reads q and
-    !> v before any model call: a first drift, q + s v finite only if q and v are, s being
-    !> finite; or a first kick whose forces are cached at q, q bitwise their point and so
-    !> finite, v + s a finite only if v is); `fsym_kernel_refused` then decides.
+    !> The check of the entry state of a kernel call (a new step) whose table does not start
+    !> with a drift (a first drift is the check itself: q + s v is finite only if q and v
+    !> are, s being finite): false when q or v is not finite (refused, the cache kept); the
+    !> cache forgotten when q is not bitwise its point. `lazy`: no pass of its own, the
+    !> first kick is the check (its forces are cached at q, q bitwise their point and so
+    !> finite; v + s a finite only if v is); `fsym_kernel_refused` then decides.
     logical function fsym_kernel_entry(op1, ks, q, v, w, lazy) result(ok)
         integer, intent(in) :: op1                                   !! the first op code
         type(kernel_state_t), intent(inout) :: ks                    !! kernel state
@@ -86,26 +86,13 @@ contains
         logical, intent(out) :: lazy                                 !! checked by the update
         logical :: moved
         ok = .true.
-        lazy = .not. ks%comp .and. (op1 == OP_DRIFT .or. (ks%have_a .and. &
-               (op1 == OP_KICK .or. (op1 == OP_GRAD_KICK .and. ks%have_g))))
-        if (lazy .and. op1 /= OP_DRIFT) lazy = same(size(q), q, w(:, ks%iqlast))
+        lazy = .not. ks%comp .and. ks%have_a .and. &
+               (op1 == OP_KICK .or. (op1 == OP_GRAD_KICK .and. ks%have_g))
+        if (lazy) lazy = fsym_loop_same(size(q), q, w(:, ks%iqlast))
         if (lazy) return
         ok = fsym_loop_entry(size(q), q, v, w(:, ks%iqlast), ks%have_a, moved)
         if (ok .and. moved) call fsym_kernel_invalidate(ks)
     end function fsym_kernel_entry
-
-    !> True when x is bitwise z.
-    pure logical function same(m, x, z)
-        integer, intent(in) :: m
-        real(wp), intent(in) :: x(m), z(m)
-        integer :: j
-        integer(iwp) :: dif
-        dif = 0
-        do j = 1, m
-            dif = ior(dif, ieor(transfer(x(j), dif), transfer(z(j), dif)))
-        end do
-        same = dif == 0
-    end function same
 
     !> After the first update of a `lazy` call found a value that is not finite (q, v as
     !> saved without swap mode): true, refused on entry (`ks%pc` = 0; the update undone, the
