@@ -25,15 +25,16 @@ contains
     subroutine bench_ratios(nrep)
         integer, intent(in) :: nrep    !! repetitions of every contender
         character(len=4), parameter :: names(5) = [character(len=4) :: 'FR', 'A', 'C', 'A6', 'BM']
-        integer, parameter :: ncon = 7, work = 200000
+        integer, parameter :: ncon = 8, work = 200000
         character(len=*), parameter :: con(ncon) = [character(len=16) :: 'run builtin', &
-            'hand builtin', 'run user', 'hand user', 'inlined', 'step builtin', 'step user']
+            'hand builtin', 'run user', 'hand user', 'inlined', 'step builtin', 'step user', &
+            'keep user']
         type(kepler_model_t) :: builtin
         type(user_kepler_t) :: user
         type(integrator_t) :: integ
         type(scheme_t) :: s
         real(wp), allocatable :: q0(:, :), v0(:, :), q(:, :), v(:, :), a(:, :), g(:, :)
-        real(wp), allocatable :: qend(:, :, :)
+        real(wp), allocatable :: qend(:, :, :), qk(:, :), vk(:, :)
         real(wp) :: t(nrep, ncon), h, nfe, tmin(ncon)
         integer(ik) :: nsteps
         integer :: id, in, m, r, k, d, n
@@ -45,13 +46,17 @@ contains
             ' model calls (`model=builtin`: `kepler_model_t`; `model=user`: a model in the'// &
             ' user''s own module). `inlined/hand`: `run` with the built-in model against an'// &
             ' inlined tight loop. `step/hand`: a loop of `integrator_t%step` against the hand'// &
-            ' loop. `nspf`: ns per particle-force (force and gradient evaluations each count'// &
+            ' loop. `floor ... keep/hand`: the hand loop that also stores q and v at the start'// &
+            ' of each step (in the loop of its first update of each), against the hand loop:'// &
+            ' the least a step that leaves the state as it was on failure must add, a floor'// &
+            ' under `step/hand`. `nspf`: ns per particle-force (force and gradient evaluations each count'// &
             ' one). `bitwise`: all contenders of a case end in the same state.'
         write (output_unit, '(a)') '', '```'
         do id = 2, 3
             do in = 1, 2
                 d = id; n = merge(1, 1000, in == 1)
-                allocate (q0(d, n), v0(d, n), a(d, n), g(d, n), qend(d, n, ncon))
+                allocate (q0(d, n), v0(d, n), a(d, n), g(d, n), qend(d, n, ncon), qk(d, n), &
+                          vk(d, n))
                 call orbits(d, n, q0, v0, h)
                 nsteps = max(1, work / n)
                 do m = 1, size(names)
@@ -71,11 +76,12 @@ contains
                     call line(names(m), d, n, 'builtin', 'inlined/hand', 1, 5)
                     call line(names(m), d, n, 'builtin', 'step/hand', 6, 2)
                     call line(names(m), d, n, 'user', 'step/hand', 7, 4)
+                    call line(names(m), d, n, 'user', 'keep/hand', 8, 4, 'floor ')
                     write (output_unit, '(a,2(a,i0),4(a,f0.3),a,l1)') 'nspf '//trim(names(m)), &
                         ' d=', d, ' n=', n, ' builtin=', per_pf(1), ' user=', per_pf(3), &
                         ' hand=', per_pf(2), ' inlined=', per_pf(5), ' bitwise=', same
                 end do
-                deallocate (q0, v0, a, g, qend)
+                deallocate (q0, v0, a, g, qend, qk, vk)
             end do
         end do
         write (output_unit, '(a)') '```', ''
@@ -113,6 +119,8 @@ contains
                 call by_calls(builtin)
             case (4)
                 call by_calls(user)
+            case (8)
+                call by_calls(user, qk, vk)
             case default
                 call inlined()
             end select
@@ -120,19 +128,22 @@ contains
             if (k == 1) nfe = real(integ%force_evaluations() + integ%gradient_evaluations(), wp)
         end function contender
 
-        subroutine by_calls(model)
+        !> The hand loop of the scheme; with q0 and v0 its `keep` variant (the state of each
+        !> step's start stored there).
+        subroutine by_calls(model, q0, v0)
             class(force_model_t), intent(inout) :: model
+            real(wp), intent(out), contiguous, optional :: q0(:, :), v0(:, :)
             select case (trim(s%name))
             case ('FR')
-                call calls_fr(s%c, h, nsteps, model, q, v, a, g)
+                call calls_fr(s%c, h, nsteps, model, q, v, a, g, q0, v0)
             case ('A')
-                call calls_a(s%c, s%u, h, nsteps, model, q, v, a, g)
+                call calls_a(s%c, s%u, h, nsteps, model, q, v, a, g, q0, v0)
             case ('C')
-                call calls_c(s%c, s%u, h, nsteps, model, q, v, a, g)
+                call calls_c(s%c, s%u, h, nsteps, model, q, v, a, g, q0, v0)
             case ('A6')
-                call calls_a6(s%c, s%u, h, nsteps, model, q, v, a, g)
+                call calls_a6(s%c, s%u, h, nsteps, model, q, v, a, g, q0, v0)
             case default
-                call calls_bm(s%c, h, nsteps, model, q, v, a, g)
+                call calls_bm(s%c, h, nsteps, model, q, v, a, g, q0, v0)
             end select
         end subroutine by_calls
 
@@ -161,13 +172,18 @@ contains
             end select
         end subroutine inlined
 
-        !> One ratio line: contender k1 against k2.
-        subroutine line(name, d, n, model, what, k1, k2)
+        !> One ratio line: contender k1 against k2 (the line starts with `lead`, default
+        !> `ratio `).
+        subroutine line(name, d, n, model, what, k1, k2, lead)
             character(len=*), intent(in) :: name, model, what
             integer, intent(in) :: d, n, k1, k2
+            character(len=*), intent(in), optional :: lead
             real(wp) :: x(nrep)
+            character(len=6) :: head
+            head = 'ratio '
+            if (present(lead)) head = lead
             x = t(:, k1) / t(:, k2)
-            write (output_unit, '(a,2(a,i0),a,2(a,f0.3))') 'ratio '//trim(name), ' d=', d, &
+            write (output_unit, '(a,2(a,i0),a,2(a,f0.3))') head//trim(name), ' d=', d, &
                 ' n=', n, ' model='//model, ' '//what//'=', tmin(k1) / tmin(k2), ' spread=', &
                 quantile(x, 0.75_wp) - quantile(x, 0.25_wp)
         end subroutine line

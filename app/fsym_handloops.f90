@@ -4,7 +4,9 @@
 !> - `calls_*`: the stages written out by hand on whole arrays (each update one plain loop
 !>   over all d*n values), making the same model calls as the library
 !>   (`model%acceleration`, `model%gradient` through the abstract model, the
-!>   first-same-as-last force kept), with no checks, no saved state, no counters;
+!>   first-same-as-last force kept), with no checks, no saved state, no counters; given
+!>   q0 and v0 (the `keep` variant, the `floor` lines) they also store the state of each
+!>   step's start there, in the loop of the step's first update of q and of v;
 !> - `inl2_*`, `inl3_*`: n independent Kepler orbits (mu = 1) in d = 2 or 3 with the force
 !>   written out: steps outside, bodies inside (that loop vectorises), each body's state in
 !>   registers through all stages of a step.
@@ -23,22 +25,23 @@ module fsym_handloops
 contains
 
     !> FR by hand with the model's own calls on whole arrays (no checks, no copies).
-    subroutine calls_fr(c, h, nsteps, model, q, v, a, g)
+    subroutine calls_fr(c, h, nsteps, model, q, v, a, g, q0, v0)
         real(wp), intent(in) :: c(:)   !! stage weights of the table
         real(wp), intent(in) :: h                           !! step
         integer(ik), intent(in) :: nsteps                   !! number of steps
         class(force_model_t), intent(inout) :: model        !! force model
         real(wp), intent(inout), contiguous :: q(:, :), v(:, :)  !! state
         real(wp), intent(inout), contiguous :: a(:, :), g(:, :)  !! force, gradient term
+        real(wp), intent(out), contiguous, optional :: q0(:, :), v0(:, :)  !! see `first`
         real(wp) :: d1, d3, k2, k4
         integer(ik) :: i
         integer :: st
         st = 0
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h
         do i = 1, nsteps
-            call axpy(size(q), q, d1, v)
+            call first(size(q), q, d1, v, q0)
             call model%acceleration(q, a, st)
-            call axpy(size(v), v, k2, a)
+            call first(size(v), v, k2, a, v0)
             call axpy(size(q), q, d3, v)
             call model%acceleration(q, a, st)
             call axpy(size(v), v, k4, a)
@@ -50,13 +53,14 @@ contains
     end subroutine calls_fr
 
     !> A by hand with the model's own calls on whole arrays (no checks, no copies).
-    subroutine calls_a(c, u, h, nsteps, model, q, v, a, g)
+    subroutine calls_a(c, u, h, nsteps, model, q, v, a, g, q0, v0)
         real(wp), intent(in) :: c(:), u(:)   !! stage weights of the table
         real(wp), intent(in) :: h                           !! step
         integer(ik), intent(in) :: nsteps                   !! number of steps
         class(force_model_t), intent(inout) :: model        !! force model
         real(wp), intent(inout), contiguous :: q(:, :), v(:, :)  !! state
         real(wp), intent(inout), contiguous :: a(:, :), g(:, :)  !! force, gradient term
+        real(wp), intent(out), contiguous, optional :: q0(:, :), v0(:, :)  !! see `first`
         real(wp) :: d2, g3, k1, k3
         integer(ik) :: i
         integer :: st
@@ -64,8 +68,8 @@ contains
         k1 = c(1) * h; d2 = c(2) * h; k3 = c(3) * h; g3 = u(3) * h**3
         call model%acceleration(q, a, st)
         do i = 1, nsteps
-            call axpy(size(v), v, k1, a)
-            call axpy(size(q), q, d2, v)
+            call first(size(v), v, k1, a, v0)
+            call first(size(q), q, d2, v, q0)
             call model%acceleration(q, a, st)
             call model%gradient(q, a, g, st)
             call axpy2(size(v), v, k3, a, g3, g)
@@ -76,22 +80,23 @@ contains
     end subroutine calls_a
 
     !> C by hand with the model's own calls on whole arrays (no checks, no copies).
-    subroutine calls_c(c, u, h, nsteps, model, q, v, a, g)
+    subroutine calls_c(c, u, h, nsteps, model, q, v, a, g, q0, v0)
         real(wp), intent(in) :: c(:), u(:)   !! stage weights of the table
         real(wp), intent(in) :: h                           !! step
         integer(ik), intent(in) :: nsteps                   !! number of steps
         class(force_model_t), intent(inout) :: model        !! force model
         real(wp), intent(inout), contiguous :: q(:, :), v(:, :)  !! state
         real(wp), intent(inout), contiguous :: a(:, :), g(:, :)  !! force, gradient term
+        real(wp), intent(out), contiguous, optional :: q0(:, :), v0(:, :)  !! see `first`
         real(wp) :: d1, d3, g4, k2, k4
         integer(ik) :: i
         integer :: st
         st = 0
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h; g4 = u(4) * h**3
         do i = 1, nsteps
-            call axpy(size(q), q, d1, v)
+            call first(size(q), q, d1, v, q0)
             call model%acceleration(q, a, st)
-            call axpy(size(v), v, k2, a)
+            call first(size(v), v, k2, a, v0)
             call axpy(size(q), q, d3, v)
             call model%acceleration(q, a, st)
             call model%gradient(q, a, g, st)
@@ -104,13 +109,14 @@ contains
     end subroutine calls_c
 
     !> A6 by hand with the model's own calls on whole arrays (no checks, no copies).
-    subroutine calls_a6(c, u, h, nsteps, model, q, v, a, g)
+    subroutine calls_a6(c, u, h, nsteps, model, q, v, a, g, q0, v0)
         real(wp), intent(in) :: c(:), u(:)   !! stage weights of the table
         real(wp), intent(in) :: h                           !! step
         integer(ik), intent(in) :: nsteps                   !! number of steps
         class(force_model_t), intent(inout) :: model        !! force model
         real(wp), intent(inout), contiguous :: q(:, :), v(:, :)  !! state
         real(wp), intent(inout), contiguous :: a(:, :), g(:, :)  !! force, gradient term
+        real(wp), intent(out), contiguous, optional :: q0(:, :), v0(:, :)  !! see `first`
         real(wp) :: d2, g1, k1, k3
         integer(ik) :: i
         integer :: st
@@ -119,8 +125,8 @@ contains
         call model%acceleration(q, a, st)
         call model%gradient(q, a, g, st)
         do i = 1, nsteps
-            call axpy2(size(v), v, k1, a, g1, g)
-            call axpy(size(q), q, d2, v)
+            call first2(size(v), v, k1, a, g1, g, v0)
+            call first(size(q), q, d2, v, q0)
             call model%acceleration(q, a, st)
             call axpy(size(v), v, k3, a)
             call axpy(size(q), q, d2, v)
@@ -140,13 +146,14 @@ contains
     end subroutine calls_a6
 
     !> BM by hand with the model's own calls on whole arrays (no checks, no copies).
-    subroutine calls_bm(c, h, nsteps, model, q, v, a, g)
+    subroutine calls_bm(c, h, nsteps, model, q, v, a, g, q0, v0)
         real(wp), intent(in) :: c(:)   !! stage weights of the table
         real(wp), intent(in) :: h                           !! step
         integer(ik), intent(in) :: nsteps                   !! number of steps
         class(force_model_t), intent(inout) :: model        !! force model
         real(wp), intent(inout), contiguous :: q(:, :), v(:, :)  !! state
         real(wp), intent(inout), contiguous :: a(:, :), g(:, :)  !! force, gradient term
+        real(wp), intent(out), contiguous, optional :: q0(:, :), v0(:, :)  !! see `first`
         real(wp) :: d1, d3, d5, d7, k2, k4, k6
         integer(ik) :: i
         integer :: st
@@ -154,9 +161,9 @@ contains
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h; d5 = c(5) * h
         k6 = c(6) * h; d7 = c(7) * h
         do i = 1, nsteps
-            call axpy(size(q), q, d1, v)
+            call first(size(q), q, d1, v, q0)
             call model%acceleration(q, a, st)
-            call axpy(size(v), v, k2, a)
+            call first(size(v), v, k2, a, v0)
             call axpy(size(q), q, d3, v)
             call model%acceleration(q, a, st)
             call axpy(size(v), v, k4, a)
@@ -564,6 +571,38 @@ contains
             x(j) = x(j) + s * y(j)
         end do
     end subroutine axpy
+
+    !> x <- x + s y over all m values, the old x into x0 in the same loop when present: the
+    !> first update of q or v in a step of the `keep` variant of the hand loops, the least a
+    !> step that can be undone must store (the state of its start).
+    subroutine first(m, x, s, y, x0)
+        integer, intent(in) :: m
+        real(wp), intent(inout) :: x(m)
+        real(wp), intent(in) :: s, y(m)
+        real(wp), intent(out), optional :: x0(m)
+        integer :: j
+        if (.not. present(x0)) then
+            call axpy(m, x, s, y); return
+        end if
+        do j = 1, m
+            x0(j) = x(j); x(j) = x(j) + s * y(j)
+        end do
+    end subroutine first
+
+    !> x <- x + (s y + r z) as `axpy2`, the old x into x0 when present (see `first`).
+    subroutine first2(m, x, s, y, r, z, x0)
+        integer, intent(in) :: m
+        real(wp), intent(inout) :: x(m)
+        real(wp), intent(in) :: s, y(m), r, z(m)
+        real(wp), intent(out), optional :: x0(m)
+        integer :: j
+        if (.not. present(x0)) then
+            call axpy2(m, x, s, y, r, z); return
+        end if
+        do j = 1, m
+            x0(j) = x(j); x(j) = x(j) + (s * y(j) + r * z(j))
+        end do
+    end subroutine first2
 
     !> x <- x + (s y + r z) over all m values.
     pure subroutine axpy2(m, x, s, y, r, z)

@@ -14,7 +14,7 @@ VGFLAGS="-O2 -g -std=f2008 -ffp-contract=off"   # valgrind lacks some -march=nat
 if [ "${1:-}" = "--ratios" ]; then
     fpm build --profile release --flag "$FLAGS" >/dev/null
     fpm run --profile release --flag "$FLAGS" fsym-bench -- ratios "${2:-21}" 2>/dev/null \
-        | grep -E '^(ratio|nspf) '
+        | grep -E '^(ratio|floor|nspf) '
     exit 0
 fi
 out=doc/benchmarks.md

@@ -14,7 +14,8 @@
 !>     ck(4:7)  d, n, nop, nslot          ck(8:11)  comp, have_a, have_g, have_x
 !>     ck(12:13) nf, ng          ck(14:16) steps, k_since (steps at h_now), 0 (reserved)
 !>     ck(17:20) t_base, h_now, h of the last step, xshift
-!>     ck(21:31) slots ia, ig, iqe, iae, iq0, iv0, iqlast, iqc, ivc, iqc0, ivc0
+!>     ck(21:31) slots ia, ig, iqe, iae, iq0, iv0, iqlast, iqc, ivc, iqc0, ivc0 (iq0 and
+!>               iqlast may come in either order: the kernel swaps their roles)
 !>     ck(CKPT_HEADER+1:) op(nop), c(nop), u(nop), q(d,n), v(d,n), w(d,n,nslot)
 module fsym_checkpoint
     use fsym_kinds, only: wp, ik
@@ -107,8 +108,11 @@ contains
         if (ck(8) /= flag(ks%comp)) then
             msg = 'checkpoint compensated and integrator not, or the reverse'; return
         end if
-        if (any(ck(21:31) /= real([ks%ia, ks%ig, ks%iqe, ks%iae, ks%iq0, ks%iv0, ks%iqlast, &
-                                   ks%iqc, ks%ivc, ks%iqc0, ks%ivc0], wp))) then
+        ! slots iq0 and iqlast trade roles in the kernel: either order fits
+        if (any(ck([21, 22, 23, 24, 26, 28, 29, 30, 31]) /= real([ks%ia, ks%ig, ks%iqe, &
+                ks%iae, ks%iv0, ks%iqc, ks%ivc, ks%iqc0, ks%ivc0], wp)) .or. .not. &
+                (all(ck([25, 27]) == real([ks%iq0, ks%iqlast], wp)) .or. &
+                 all(ck([25, 27]) == real([ks%iqlast, ks%iq0], wp)))) then
             msg = 'checkpoint of another work-array layout'; return
         end if
         k = CKPT_HEADER
@@ -126,6 +130,7 @@ contains
         clock%steps = int(ck(14), ik); clock%k_since = int(ck(15), ik)
         clock%t_base = ck(17); clock%h_now = ck(18); ks%h = ck(19); ks%xshift = ck(20)
         ks%active = .false.; ks%pc = 0; ks%req = 0
+        ks%iq0 = nint(ck(25)); ks%iqlast = nint(ck(27))
         k = k + 3 * nop
         q = ck(k + 1:k + m); k = k + m
         v = ck(k + 1:k + m); k = k + m

@@ -36,7 +36,8 @@ contains
     !> tell a non-finite force (the stage fails) from a non-finite state (the step fails at
     !> its end); other forces are checked at once. The first update of q and of v in a step
     !> saves the old values in the same loop, or, in a run of steps, writes into the other
-    !> buffer of two (`sw`, swap mode): the state the step restores on failure.
+    !> buffer of two (`sw`, swap mode): the state the step restores on failure; where the entry
+    !> check found q bitwise in slot iqlast, that slot becomes iq0 (`qpre`): q is not saved.
     subroutine fsym_kernel_run(nop, op, c, u, model, ks, q, v, w, h, nsteps, ndone, stat, &
                                recorder, step0)
         integer, intent(in) :: nop                               !! number of stages
@@ -57,11 +58,11 @@ contains
         integer(ik) :: i, s0, nlast
         integer :: k, m, iy, iyf, mst
         real(wp) :: hs, shift
-        logical :: qok, vok, vwas, fresh, fa, resumed, teed, two, rec, lazy, sw
+        logical :: qok, vok, vwas, fresh, fa, resumed, teed, two, rec, lazy, sw, qpre
 
         ndone = 0; stat = FSYM_SUCCESS; m = ks%d * ks%n; s0 = 0; teed = .false.; lazy = .false.
         if (present(step0)) s0 = step0
-        rec = present(recorder)
+        rec = present(recorder); qpre = .false.
         qp => q; a => w(:, :, ks%ia); g => w(:, :, ks%ig)      ! descriptors made once
         ! swap mode (`sw`, runs of steps on 64 values or more): a step's first update of q (v)
         ! writes into the other buffer (current: qp, vc), the start stays; `settle` ends it
@@ -78,6 +79,7 @@ contains
                 if (.not. fsym_kernel_entry(op(1), ks, q, v, w, lazy)) then   ! q, v finite?
                     stat = FSYM_ERR_NONFINITE_STATE; return
                 end if
+                qpre = lazy      ! q is bitwise in slot iqlast, the cached force's point
             end if
         end if
         hs = h; nlast = max(nsteps, 1_ik)
@@ -105,6 +107,11 @@ contains
                 end if
                 ks%pc = k
                 if (op(k) == OP_DRIFT) then
+                    if (qpre .and. .not. ks%qsaved) then   ! slot iqlast holds q: now iq0
+                        iy = ks%iq0; ks%iq0 = ks%iqlast; ks%iqlast = iy; ks%qsaved = .true.
+                        qo => w(:, :, ks%iq0)
+                    end if
+                    qpre = .false.
                     teed = i == nlast .and. k == ks%klast .and. .not. (ks%comp .or. lazy)  ! iqlast
                     qok = upd(qp, w(:, :, ks%iqc), qo, c(k) * hs, vc, 0.0_wp, vc, .false., &
                               ks%qsaved, w(:, :, ks%iqlast), teed)

@@ -29,7 +29,8 @@ module fsym_kernel_state
         integer :: ia = 1, ig = 1           !! slots: acceleration, gradient term at q
         integer :: iqe = 1, iae = 1         !! slots: shifted point, acceleration there
         integer :: iq0 = 1, iv0 = 1         !! slots: q, v at the start of the step
-        integer :: iqlast = 1               !! slot: q the cached force belongs to
+        integer :: iqlast = 1               !! slot: q the cached force belongs to (it and
+                                            !! iq0 trade roles, see fsym_kernel_run)
         integer :: iqc = 1, ivc = 1         !! slots: compensation terms of q, v
         integer :: iqc0 = 1, ivc0 = 1       !! slots: compensation terms on entry
         integer :: klast = 0
