@@ -49,8 +49,9 @@ contains
             ' loop. `floor ... keep/hand`: the hand loop that also stores q and v at the start'// &
             ' of each step (in the loop of its first update of each), against the hand loop:'// &
             ' the least a step that leaves the state as it was on failure must add, a floor'// &
-            ' under `step/hand`. `nspf`: ns per particle-force (force and gradient evaluations each count'// &
-            ' one). `bitwise`: all contenders of a case end in the same state.'
+            ' under `step/hand`. `nspf`: ns per particle-force (force and gradient'// &
+            ' evaluations each count one). `bitwise`: all contenders of a case end in the'// &
+            ' same state.'
         write (output_unit, '(a)') '', '```'
         do id = 2, 3
             do in = 1, 2
