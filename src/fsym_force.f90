@@ -26,6 +26,10 @@ module fsym_force
             !! optional: whole steps of a scheme in the model's own fused loop (default: none)
         procedure :: has_advance => force_has_no_advance
             !! whether `advance` is provided (the integrator calls it only then)
+        procedure :: drift => force_free_drift
+            !! the flow of the other part of H over dt (default: free flight q <- q + dt v)
+        procedure :: has_drift => force_has_free_drift
+            !! whether `drift` is overridden (the kernel does free flight itself otherwise)
         procedure :: local_frequency => force_no_frequency
             !! largest local frequency squared, for the step-size guard (optional)
         procedure :: has_frequency => force_has_no_frequency
@@ -127,6 +131,26 @@ contains
         class(force_model_t), intent(in) :: self  !! the model
         force_has_no_advance = .false.
     end function force_has_no_advance
+
+    !> Default drift: free flight, q <- q + dt v (the kinetic part p^2/2 of H). A model whose
+    !> splitting has another solvable part (a Kepler flow for planetary systems, the
+    !> Wisdom-Holman splitting) overrides it, together with `has_drift`; the kernel then calls
+    !> it at every drift stage with dt = c h, and restores q and v itself when it sets `stat`.
+    !> A drift never steps: it applies one exact flow and knows nothing of the scheme.
+    subroutine force_free_drift(self, q, v, dt, stat)
+        class(force_model_t), intent(inout) :: self      !! the model
+        real(wp), intent(inout), contiguous :: q(:, :)   !! positions (d, n)
+        real(wp), intent(inout), contiguous :: v(:, :)   !! velocities (d, n)
+        real(wp), intent(in) :: dt                       !! time to flow (any sign)
+        integer, intent(inout) :: stat                   !! 0 on entry; non-zero = failure
+        q = q + dt * v
+    end subroutine force_free_drift
+
+    !> Whether `drift` is overridden (default: no, the kernel does free flight inline).
+    logical function force_has_free_drift(self)
+        class(force_model_t), intent(in) :: self  !! the model
+        force_has_free_drift = .false.
+    end function force_has_free_drift
 
     !> Whether `potential` is provided (default: no).
     logical function force_has_no_potential(self)
