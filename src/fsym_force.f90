@@ -3,10 +3,11 @@
 !> State convention: positions `q(d,n)` and velocities `v(d,n)`, d dimensions, n particles.
 !> A model returns accelerations `a(q)` (required), and optionally the gradient term
 !> g_j = (1/m_j) d/dq_j sum_i m_i |a_i|^2 (for unit masses the paper's grad |F|^2) and the
-!> potential energy. User data travels by extending `force_model_t`.
+!> potential energy, and the flow of the other part of H (free flight unless overridden: a
+!> planetary model's Kepler flow). A model supplies forces and flows; it never steps. User data
+!> travels by extending `force_model_t`.
 module fsym_force
     use fsym_kinds, only: wp, ik
-    use fsym_kernel_state, only: kernel_state_t
     implicit none
     private
 
@@ -22,10 +23,6 @@ module fsym_force
         procedure :: has_gradient => force_has_no_gradient  !! whether `gradient` is provided
         procedure :: potential => force_no_potential    !! potential energy (optional)
         procedure :: has_potential => force_has_no_potential  !! whether `potential` is provided
-        procedure :: advance => force_no_advance
-            !! optional: whole steps of a scheme in the model's own fused loop (default: none)
-        procedure :: has_advance => force_has_no_advance
-            !! whether `advance` is provided (the integrator calls it only then)
         procedure :: drift => force_free_drift
             !! the flow of the other part of H over dt (default: free flight q <- q + dt v)
         procedure :: has_drift => force_has_free_drift
@@ -100,37 +97,6 @@ contains
         epot = 0.0_wp
         stat = 1
     end subroutine force_no_potential
-
-    !> Default `advance`: takes no step (`ndone` = 0), so the kernel takes them all.
-    !>
-    !> A model may override it with a fused loop over its own force (no calls, state in
-    !> registers) that takes up to `nsteps` steps of size h of the scheme (op, c, u) from
-    !> (q, v) exactly as `fsym_kernel_run` would: the same stage arithmetic bit for bit, the
-    !> same force cache, slots and counters left in `ks` and `w` after `ndone` steps. It must
-    !> stop before any step it is not sure of (a check that would fail, a case it does not
-    !> handle), leaving the state after `ndone` steps: `integrator_t%run` then lets the
-    !> kernel take the remaining steps, which reports any failure itself. It is only used
-    !> without a recorder, on a state that is not suspended.
-    subroutine force_no_advance(self, op, c, u, ks, q, v, w, h, nsteps, ndone)
-        class(force_model_t), intent(inout) :: self               !! the model
-        integer, intent(in), contiguous :: op(:)                  !! op codes of the stages
-        real(wp), intent(in), contiguous :: c(:), u(:)            !! stage coefficients
-        type(kernel_state_t), intent(inout) :: ks                 !! kernel state
-        real(wp), intent(inout) :: q(ks%d, ks%n), v(ks%d, ks%n)   !! state
-        real(wp), intent(inout) :: w(ks%d, ks%n, ks%nslot)        !! the kernel's work array
-        real(wp), intent(in) :: h                                 !! step
-        integer(ik), intent(in) :: nsteps                         !! steps wanted
-        integer(ik), intent(out) :: ndone                         !! steps taken
-        ndone = 0
-    end subroutine force_no_advance
-
-    !> Whether `advance` is provided (default: no). A model that overrides `advance`
-    !> overrides this too, to return true; the integrator asks first (a cheap call), so a
-    !> model without a fused stepper costs no `advance` call per step.
-    logical function force_has_no_advance(self)
-        class(force_model_t), intent(in) :: self  !! the model
-        force_has_no_advance = .false.
-    end function force_has_no_advance
 
     !> Default drift: free flight, q <- q + dt v (the kinetic part p^2/2 of H). A model whose
     !> splitting has another solvable part (a Kepler flow for planetary systems, the

@@ -9,7 +9,8 @@ module fsym_integrator
     use fsym_force, only: force_model_t, recorder_t
     use fsym_stepper, only: stepper_t, observer_t
     use fsym_kernel, only: kernel_state_t, fsym_kernel_layout, fsym_kernel_run, &
-                           fsym_kernel_invalidate, fsym_kernel_abort, KERNEL_SUSPEND
+                           fsym_kernel_invalidate, fsym_kernel_undo, fsym_kernel_slots, &
+                           fsym_kernel_counts, fsym_kernel_stage
     use fsym_text, only: fsym_text_put, fsym_text_put_int
     use fsym_guard, only: guard_t, fsym_guard_setup, fsym_guard_check, fsym_guard_message
     use fsym_checkpoint, only: ckpt_clock_t, fsym_checkpoint_length, fsym_checkpoint_pack, &
@@ -24,6 +25,8 @@ module fsym_integrator
         real(wp), allocatable :: w(:)        ! the kernel's work array (d, n, slots) from w(w0)
         integer :: w0 = 1                    ! w(w0) on a 64-byte boundary (vector loads)
         type(kernel_state_t) :: ks           ! the kernel's state
+        integer :: nd = 0, nb = 0            ! the arrays' shape (d, n)
+        integer(ik) :: nw = 0                ! reals of the work array in use
         logical :: ready = .false.
         logical :: needs_g = .false.        ! the scheme has gradient kicks
         type(guard_t) :: guard              ! the step-size guard (off by default)
@@ -101,15 +104,16 @@ contains
 
         self%ready = .false.
         if (allocated(self%w)) deallocate (self%w)
-        allocate (self%w(int(d, ik) * n * ks%nslot + 7), stat=ast)
+        allocate (self%w(int(d, ik) * n * fsym_kernel_slots(ks) + 7), stat=ast)
         if (ast /= 0) then
             call fsym_report(FSYM_ERR_NO_MEMORY, 'integrator workspace of '// &
-                             fsym_int_text(ks%nslot)//' x '//fsym_int_text(d)//' x '// &
-                             fsym_int_text(n)//' reals', stat, errmsg)
+                             fsym_int_text(fsym_kernel_slots(ks))//' x '//fsym_int_text(d)// &
+                             ' x '//fsym_int_text(n)//' reals', stat, errmsg)
             return
         end if
         self%sc = s
         self%ks = ks
+        self%nd = d; self%nb = n; self%nw = int(d, ik) * n * fsym_kernel_slots(ks)
         self%w = 0.0_wp
         self%w0 = aligned_start(self%w)
         call self%describe_stepper(s%name, d, n, .true., s%forward, s%symplectic, s%nforce, &
@@ -226,8 +230,8 @@ contains
         class(integrator_t), intent(in) :: self
         real(wp), intent(in), contiguous :: q(:, :), v(:, :)
         st = FSYM_SUCCESS
-        if (.not. (self%ready .and. size(q, 1) == self%ks%d .and. size(q, 2) == self%ks%n &
-                   .and. size(v, 1) == self%ks%d .and. size(v, 2) == self%ks%n)) then
+        if (.not. (self%ready .and. size(q, 1) == self%nd .and. size(q, 2) == self%nb &
+                   .and. size(v, 1) == self%nd .and. size(v, 2) == self%nb)) then
             st = merge(FSYM_ERR_SHAPE, FSYM_ERR_NOT_INITIALIZED, self%ready)
         end if
     end function refusal
@@ -240,14 +244,14 @@ contains
     subroutine advance(self, model, q, v, h, nsteps, ndone, st, recorder)
         class(integrator_t), intent(inout) :: self
         class(force_model_t), intent(inout) :: model
-        real(wp), intent(inout) :: q(self%ks%d, self%ks%n), v(self%ks%d, self%ks%n)
+        real(wp), intent(inout) :: q(self%nd, self%nb), v(self%nd, self%nb)
         real(wp), intent(in) :: h
         integer(ik), intent(in) :: nsteps
         integer(ik), intent(out) :: ndone
         integer, intent(out) :: st
         class(recorder_t), intent(inout), optional :: recorder
-        integer(ik) :: nfused
-        ndone = 0; nfused = 0; st = FSYM_SUCCESS
+        integer(ik) :: nf, ng
+        ndone = 0; st = FSYM_SUCCESS
         if (self%needs_g) then
             if (.not. model%has_gradient()) then
                 st = FSYM_ERR_NO_GRADIENT; return
@@ -256,23 +260,11 @@ contains
         if (self%guard%on .or. present(recorder)) then
             call watched_run(self, model, q, v, h, nsteps, ndone, st, recorder)
         else
-            if (.not. self%ks%active) then
-                if (model%has_advance()) call model%advance(self%sc%op, self%sc%c, &
-                    self%sc%u, self%ks, q, v, self%w(self%w0), h, nsteps, nfused)
-            end if
-            if (nfused < nsteps .or. self%ks%active) then
-                call fsym_kernel_run(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, model, &
-                                     self%ks, q, v, self%w(self%w0), h, nsteps - nfused, &
-                                     ndone, st)
-            end if
-            ndone = ndone + nfused
+            call fsym_kernel_run(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, model, &
+                                 self%ks, q, v, self%w(self%w0), h, nsteps, ndone, st)
         end if
-        call self%account(self%ks%nf, self%ks%ng, h, ndone)
-        if (st == KERNEL_SUSPEND) then
-            ! a model's stat that happens to be the kernel's suspend code is a failure here
-            call fsym_kernel_abort(self%ks, q, v, self%w(self%w0))
-            st = FSYM_ERR_MODEL
-        end if
+        call fsym_kernel_counts(self%ks, nf, ng)
+        call self%account(nf, ng, h, ndone)
     end subroutine advance
 
     !> Report the status `st` of `advance`: a refusal (not initialised, arrays of the wrong
@@ -288,7 +280,7 @@ contains
         case (FSYM_ERR_NOT_INITIALIZED)
             call fsym_report(st, 'integrator_t%step before init', stat, errmsg)
         case (FSYM_ERR_SHAPE)
-            call fsym_report(st, shape_text(self%ks%d, self%ks%n, q, v), stat, errmsg)
+            call fsym_report(st, shape_text(self%nd, self%nb, q, v), stat, errmsg)
         case (FSYM_ERR_NO_GRADIENT)
             call fsym_report(st, 'method '//self%sc%name//': this model has no gradient term', &
                              stat, errmsg)
@@ -296,7 +288,7 @@ contains
             call fsym_report(st, fsym_guard_message(self%guard, self%sc%name, self%time(), &
                              self%steps() + 1), stat, errmsg)
         case default
-            call report_step_failure(self, st, self%ks%pc == 0, stat, errmsg)
+            call report_step_failure(self, st, fsym_kernel_stage(self%ks) == 0, stat, errmsg)
         end select
     end subroutine report
 
@@ -304,7 +296,7 @@ contains
     subroutine watched_run(self, model, q, v, h, nsteps, ndone, st, recorder)
         class(integrator_t), intent(inout) :: self
         class(force_model_t), intent(inout) :: model
-        real(wp), intent(inout) :: q(self%ks%d, self%ks%n), v(self%ks%d, self%ks%n)
+        real(wp), intent(inout) :: q(self%nd, self%nb), v(self%nd, self%nb)
         real(wp), intent(in) :: h
         integer(ik), intent(in) :: nsteps
         integer(ik), intent(out) :: ndone
@@ -325,7 +317,7 @@ contains
     subroutine guarded_run(self, model, q, v, h, nsteps, ndone, st, recorder, step0)
         class(integrator_t), intent(inout) :: self
         class(force_model_t), intent(inout) :: model
-        real(wp), intent(inout) :: q(self%ks%d, self%ks%n), v(self%ks%d, self%ks%n)
+        real(wp), intent(inout) :: q(self%nd, self%nb), v(self%nd, self%nb)
         real(wp), intent(in) :: h
         integer(ik), intent(in) :: nsteps, step0
         integer(ik), intent(out) :: ndone
@@ -342,13 +334,11 @@ contains
             if (st /= FSYM_SUCCESS) return
             call fsym_guard_check(self%guard, model, q, h, st)
             if (st /= FSYM_SUCCESS) then
-                self%ks%active = .true.        ! undo the step just taken
-                call fsym_kernel_abort(self%ks, q, v, self%w(self%w0))
+                call fsym_kernel_undo(self%ks, q, v, self%w(self%w0))   ! the step just taken
                 exit
             end if
             ndone = ndone + nd
         end do
-        self%ks%pc = 0
     end subroutine guarded_run
 
     !> Turn the step-size guard on (`on`) or off. On, every step first asks the model for its
@@ -389,10 +379,9 @@ contains
         integer, intent(out), optional :: stat
         character(len=*), intent(inout), optional :: errmsg
         character(len=320) :: buf
-        character(len=*), parameter :: opname(4) = [character(len=17) :: 'drift', 'kick', &
-                                                    'gradient-kick', 'extrapolated-kick']
-        integer :: k, p
-        k = self%sc%op(max(1, min(self%ks%pc, self%sc%nop)))
+        integer :: k, p, pc
+        pc = fsym_kernel_stage(self%ks)
+        k = self%sc%op(max(1, min(pc, self%sc%nop)))
         p = 0; buf = ''
         call fsym_text_put(buf, p, 'method ')
         call fsym_text_put(buf, p, self%sc%name)
@@ -400,13 +389,13 @@ contains
         call fsym_text_put_int(buf, p, self%steps() + 1)
         if (.not. at_begin) then
             call fsym_text_put(buf, p, ', stage ')
-            call fsym_text_put_int(buf, p, int(self%ks%pc, ik))
+            call fsym_text_put_int(buf, p, int(pc, ik))
             if (st == FSYM_ERR_NONFINITE_STATE) then
                 call fsym_text_put(buf, p, ': the step drove the state to NaN/Inf (step &
                                    &too large for this state?); state restored')
             else
                 call fsym_text_put(buf, p, ' (')
-                call fsym_text_put(buf, p, trim(opname(max(1, min(k, 4)))))
+                call fsym_text_put(buf, p, fsym_op_name(k))
                 call fsym_text_put(buf, p, '); state restored')
             end if
         end if
@@ -439,7 +428,7 @@ contains
         class(integrator_t), intent(in) :: self  !! the integrator
         integer(ik) :: m
         m = 0
-        if (allocated(self%w)) m = int(self%ks%d, ik) * self%ks%n * self%ks%nslot
+        if (allocated(self%w)) m = self%nw
         integrator_work_size = m
     end function integrator_work_size
 
@@ -447,8 +436,8 @@ contains
     pure integer(ik) function integrator_checkpoint_length(self) result(m)
         class(integrator_t), intent(in) :: self  !! the integrator
         m = 0
-        if (self%ready) m = fsym_checkpoint_length(self%sc%nop, self%ks%d, self%ks%n, &
-                                                   self%ks%nslot)
+        if (self%ready) m = fsym_checkpoint_length(self%sc%nop, self%nd, self%nb, &
+                                                   fsym_kernel_slots(self%ks))
     end function integrator_checkpoint_length
 
     !> Write the complete state (q, v, clock, counters, method, cached forces, compensation
@@ -464,7 +453,7 @@ contains
         if (.not. checkpoint_fits(self, q, v, size(ck, kind=ik), stat, errmsg)) return
         call self%clock_state(clock%t_base, clock%h_now, clock%k_since, clock%steps, 0)
         call fsym_checkpoint_pack(self%sc%op, self%sc%c, self%sc%u, self%ks, clock, q, v, &
-                                  self%w(self%w0), ck)
+                                  self%w(self%w0:self%w0 + self%nw - 1), ck)
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine integrator_save_checkpoint
 
@@ -486,12 +475,12 @@ contains
         character(len=128) :: msg
         if (.not. checkpoint_fits(self, q, v, size(ck, kind=ik), stat, errmsg)) return
         call fsym_checkpoint_unpack(ck, self%sc%op, self%sc%c, self%sc%u, self%ks, clock, q, &
-                                    v, self%w(self%w0), st, msg)
+                                    v, self%w(self%w0:self%w0 + self%nw - 1), st, msg)
         if (st /= FSYM_SUCCESS) then
             call fsym_report(st, msg, stat, errmsg); return
         end if
         call self%clock_state(clock%t_base, clock%h_now, clock%k_since, clock%steps, 1)
-        nf = self%ks%nf; ng = self%ks%ng
+        call fsym_kernel_counts(self%ks, nf, ng)
         call self%counters(nf, ng, 1)
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine integrator_load_checkpoint
@@ -506,9 +495,9 @@ contains
         ok = .false.
         if (.not. self%ready) then
             call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'checkpoint before init', stat, errmsg)
-        else if (size(q, 1) /= self%ks%d .or. size(q, 2) /= self%ks%n .or. &
-                 size(v, 1) /= self%ks%d .or. size(v, 2) /= self%ks%n) then
-            call fsym_report(FSYM_ERR_SHAPE, shape_text(self%ks%d, self%ks%n, q, v), stat, &
+        else if (size(q, 1) /= self%nd .or. size(q, 2) /= self%nb .or. &
+                 size(v, 1) /= self%nd .or. size(v, 2) /= self%nb) then
+            call fsym_report(FSYM_ERR_SHAPE, shape_text(self%nd, self%nb, q, v), stat, &
                              errmsg)
         else if (nck < self%checkpoint_length()) then
             call fsym_report(FSYM_ERR_CHECKPOINT, 'checkpoint array shorter than '// &

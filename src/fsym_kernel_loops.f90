@@ -1,5 +1,5 @@
-!> Array loops of the splitting kernel (`fsym_kernel`) and of fused steppers: the finite
-!> check, copies, the shifted point and the compensated stage updates, each over all
+!> Array loops of the splitting kernel (`fsym_kernel`): the finite check, the entry check,
+!> copies, the shifted point and the compensated stage updates, each over all
 !> m = d*n values of a contiguous array (the kernel's plain updates are its own, to be
 !> inlined). The finite test: x - x is +0 or -0 for a finite x (its bits zero but for the
 !> sign) and NaN for NaN or Inf; the bits are or-ed into an integer of the same size
@@ -10,7 +10,7 @@ module fsym_kernel_loops
     private
 
     public :: fsym_all_finite, fsym_loop_copy, fsym_loop_shifted, fsym_loop_update_comp
-    public :: fsym_loop_update2_comp, fsym_loop_entry, fsym_loop_same, fsym_loop_exchange
+    public :: fsym_loop_update2_comp, fsym_loop_entry
 
 contains
 
@@ -27,17 +27,6 @@ contains
         fsym_all_finite = iand(bad, huge(bad)) == 0
     end function fsym_all_finite
 
-    !> x <-> y.
-    pure subroutine fsym_loop_exchange(m, x, y)
-        integer, intent(in) :: m                 !! number of values
-        real(wp), intent(inout) :: x(m), y(m)    !! the two arrays
-        real(wp) :: t
-        integer :: j
-        do j = 1, m
-            t = x(j); x(j) = y(j); y(j) = t
-        end do
-    end subroutine fsym_loop_exchange
-
     !> y <- x.
     pure subroutine fsym_loop_copy(m, x, y)
         integer, intent(in) :: m         !! number of values
@@ -49,37 +38,27 @@ contains
         end do
     end subroutine fsym_loop_copy
 
-    !> The check of a step's entry state in one loop: true when x (positions) and y
-    !> (velocities) are all finite; `differ` when `cached` and x is not bitwise z (the
-    !> point of the cached force).
+    !> The check of a step's entry state: true when x (positions) and y (velocities) are all
+    !> finite; `differ` when `cached` and x is not bitwise z (the point of the cached force).
     logical function fsym_loop_entry(m, x, y, z, cached, differ) result(ok)
         integer, intent(in) :: m                     !! number of values
         real(wp), intent(in) :: x(m), y(m), z(m)     !! positions, velocities, cached point
         logical, intent(in) :: cached                !! a force is cached
         logical, intent(out) :: differ               !! x differs from z
         integer :: j
-        integer(iwp) :: bad
-        bad = 0
+        integer(iwp) :: bad, dif
+        bad = 0; dif = 0
         do j = 1, m
             bad = ior(bad, ior(transfer(x(j) - x(j), bad), transfer(y(j) - y(j), bad)))
         end do
         ok = iand(bad, huge(bad)) == 0
-        differ = .false.
-        if (cached) differ = .not. fsym_loop_same(m, x, z)
+        if (cached) then      ! the bits of x xor z
+            do j = 1, m
+                dif = ior(dif, ieor(transfer(x(j), dif), transfer(z(j), dif)))
+            end do
+        end if
+        differ = dif /= 0
     end function fsym_loop_entry
-
-    !> True when x is bitwise z.
-    pure logical function fsym_loop_same(m, x, z) result(same)
-        integer, intent(in) :: m                     !! number of values
-        real(wp), intent(in) :: x(m), z(m)           !! the two arrays
-        integer :: j
-        integer(iwp) :: dif
-        dif = 0
-        do j = 1, m
-            dif = ior(dif, ieor(transfer(x(j), dif), transfer(z(j), dif)))
-        end do
-        same = dif == 0
-    end function fsym_loop_same
 
     !> z <- x + s y (the point of an extrapolated force).
     pure subroutine fsym_loop_shifted(m, x, s, y, z)

@@ -146,8 +146,8 @@ subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
                            FSYM_ERR_BAD_ARGUMENT
     use fsym_kinds, only: wp, ik
     use fsym_scheme, only: OP_GRAD_KICK
-    use fsym_kernel, only: kernel_state_t, fsym_kernel_run
-    use fsym_kernel_state, only: fsym_kernel_last_drift
+    use fsym_kernel, only: kernel_state_t, fsym_kernel_run, fsym_kernel_request, KERNEL_NPACK, &
+                           REQ_NONE
     use fsym_legacy_work, only: legacy_check, legacy_load, legacy_store, legacy_model_t, &
                                 LEGACY_KO, LEGACY_KC
     use fsym_legacy_api, only: fsym_legacy_accel, fsym_legacy_grad, FSYMG0
@@ -165,7 +165,7 @@ subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
     procedure(fsym_legacy_grad) :: GRAD         !! GRAD(ND, N, X, A, G): gradient term at X
     type(kernel_state_t) :: ks
     type(legacy_model_t) :: model
-    integer :: nop, kw
+    integer :: nop, kw, req, at, into, given
     integer(ik) :: ndone
     INFO = legacy_check(ND, N, LRW, LIW, IW)
     ! IW may be shorter than 7 here: write nothing into it
@@ -175,11 +175,12 @@ subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
     if (NSTEP < 1) then
         INFO = FSYM_ERR_BAD_ARGUMENT; return
     end if
-    call legacy_load(IW(8:LEGACY_KO - 1), RW(1:4), ks)
-    if (ks%active) then
+    call legacy_load(LIW, IW, RW(1:KERNEL_NPACK), ks, INFO)
+    if (INFO /= FSYM_SUCCESS) return
+    call fsym_kernel_request(ks, req, at, into, given)
+    if (req /= REQ_NONE) then
         INFO = FSYM_ERR_BAD_REQUEST; return     ! a reverse-communication step is open
     end if
-    ks%klast = fsym_kernel_last_drift(IW(LEGACY_KO:LEGACY_KO + nop - 1))   ! not in IW
     model%accel => ACCEL
     model%grad => GRAD
     if (associated(model%grad, FSYMG0)) then
@@ -194,7 +195,7 @@ subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
                          model, ks, X, V, RW(kw), H, &
                          int(NSTEP, ik), ndone, INFO)
     IW(7) = int(ndone)
-    call legacy_store(ks, IW(8:LEGACY_KO - 1), RW(1:4))
+    call legacy_store(ks, RW(1:KERNEL_NPACK))
 end subroutine FSYMST
 
 !> The "no gradient term" routine: pass it as GRAD to FSYMST when the model has none (a
@@ -227,8 +228,8 @@ subroutine FSYMRC(ND, N, X, V, H, RW, LRW, IW, LIW, IREQ, IPNT, INFO)
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_REQUEST
     use fsym_kinds, only: wp, ik
     use fsym_kernel, only: kernel_state_t, fsym_kernel_run, fsym_kernel_abort, &
-                           KERNEL_SUSPEND, REQ_FORCE, REQ_GRADIENT, REQ_FORCE_SHIFTED
-    use fsym_legacy_work, only: legacy_check, legacy_load, legacy_store, suspend_model_t, &
+                           fsym_kernel_request, KERNEL_SUSPEND, KERNEL_NPACK, REQ_NONE
+    use fsym_legacy_work, only: legacy_check, legacy_load, legacy_store, legacy_model_t, &
                                 LEGACY_KO, LEGACY_KC
     implicit none
     integer, intent(in) :: ND, N                !! dimensions, bodies
@@ -242,8 +243,8 @@ subroutine FSYMRC(ND, N, X, V, H, RW, LRW, IW, LIW, IREQ, IPNT, INFO)
     integer, intent(out) :: IPNT(3)             !! positions in RW of the request's arrays
     integer, intent(out) :: INFO                !! status
     type(kernel_state_t) :: ks
-    type(suspend_model_t) :: model
-    integer :: nop, kw, m
+    type(legacy_model_t) :: model      ! never called: the kernel asks the caller
+    integer :: nop, kw, m, req, at, into, given
     integer(ik) :: ndone
     IPNT = 0
     INFO = legacy_check(ND, N, LRW, LIW, IW)
@@ -253,38 +254,33 @@ subroutine FSYMRC(ND, N, X, V, H, RW, LRW, IW, LIW, IREQ, IPNT, INFO)
     nop = IW(4)
     kw = LEGACY_KC + 2 * nop
     m = ND * N
-    call legacy_load(IW(8:LEGACY_KO - 1), RW(1:4), ks)
+    call legacy_load(LIW, IW, RW(1:KERNEL_NPACK), ks, INFO)
+    if (INFO /= FSYM_SUCCESS) then
+        IREQ = -1; return
+    end if
     if (IREQ == -1) then
         call fsym_kernel_abort(ks, X, V, RW(kw))
-        call legacy_store(ks, IW(8:LEGACY_KO - 1), RW(1:4))
+        call legacy_store(ks, RW(1:KERNEL_NPACK))
         IREQ = 0; INFO = FSYM_SUCCESS; return
     end if
-    if ((ks%active .neqv. IREQ /= 0) .or. (ks%active .and. IREQ /= ks%req)) then
+    call fsym_kernel_request(ks, req, at, into, given)
+    if ((req /= REQ_NONE .neqv. IREQ /= 0) .or. (req /= REQ_NONE .and. IREQ /= req)) then
         ! out of order: abandon the step in progress (X, V restored), then refuse
         call fsym_kernel_abort(ks, X, V, RW(kw))
-        call legacy_store(ks, IW(8:LEGACY_KO - 1), RW(1:4))
+        call legacy_store(ks, RW(1:KERNEL_NPACK))
         IREQ = -1; INFO = FSYM_ERR_BAD_REQUEST; return
     end if
     call fsym_kernel_run(nop, IW(LEGACY_KO:LEGACY_KO + nop - 1), &
                          RW(LEGACY_KC:LEGACY_KC + nop - 1), RW(LEGACY_KC + nop:kw - 1), &
-                         model, ks, X, V, RW(kw), H, 1_ik, &
-                         ndone, INFO)
-    call legacy_store(ks, IW(8:LEGACY_KO - 1), RW(1:4))
+                         model, ks, X, V, RW(kw), H, 1_ik, ndone, INFO, ask=.true.)
+    call legacy_store(ks, RW(1:KERNEL_NPACK))
     if (INFO == KERNEL_SUSPEND) then
         INFO = FSYM_SUCCESS
-        IREQ = ks%req
-        select case (ks%req)
-        case (REQ_FORCE)
-            IPNT(2) = kw + (ks%ia - 1) * m
-        case (REQ_GRADIENT)
-            IPNT(2) = kw + (ks%ig - 1) * m
-            IPNT(3) = kw + (ks%ia - 1) * m
-        case (REQ_FORCE_SHIFTED)
-            IPNT(1) = kw + (ks%iqe - 1) * m
-            IPNT(2) = kw + (ks%iae - 1) * m
-        case default
-            continue      ! no other request exists
-        end select
+        call fsym_kernel_request(ks, IREQ, at, into, given)
+        ! the slots of the request as positions in RW (0: X itself, or none)
+        if (at > 0) IPNT(1) = kw + (at - 1) * m
+        if (into > 0) IPNT(2) = kw + (into - 1) * m
+        if (given > 0) IPNT(3) = kw + (given - 1) * m
     else if (INFO == FSYM_SUCCESS) then
         IREQ = 0
     else
@@ -329,7 +325,8 @@ subroutine FSYMRS(ND, N, X, V, RW, LRW, IW, LIW, INFO)
     use fsym_status, only: FSYM_SUCCESS
     use fsym_kinds, only: wp
     use fsym_kernel, only: kernel_state_t, fsym_kernel_abort
-    use fsym_legacy_work, only: legacy_check, legacy_load, legacy_store, LEGACY_KO, LEGACY_KC
+    use fsym_kernel, only: KERNEL_NPACK
+    use fsym_legacy_work, only: legacy_check, legacy_load, legacy_store, LEGACY_KC
     implicit none
     integer, intent(in) :: ND, N                !! dimensions, bodies
     real(wp), intent(inout) :: X(ND, N)         !! positions (restored if a step was open)
@@ -341,9 +338,10 @@ subroutine FSYMRS(ND, N, X, V, RW, LRW, IW, LIW, INFO)
     type(kernel_state_t) :: ks
     INFO = legacy_check(ND, N, LRW, LIW, IW)
     if (INFO /= FSYM_SUCCESS) return
-    call legacy_load(IW(8:LEGACY_KO - 1), RW(1:4), ks)
+    call legacy_load(LIW, IW, RW(1:KERNEL_NPACK), ks, INFO)
+    if (INFO /= FSYM_SUCCESS) return
     call fsym_kernel_abort(ks, X, V, RW(LEGACY_KC + 2 * IW(4)))
-    call legacy_store(ks, IW(8:LEGACY_KO - 1), RW(1:4))
+    call legacy_store(ks, RW(1:KERNEL_NPACK))
 end subroutine FSYMRS
 
 !> Check the calling convention: call it once with INTEGER ICHK(2) set to (1, 2). The
@@ -403,7 +401,7 @@ end subroutine FSYMCL
 subroutine FSYMCK(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_REQUEST, FSYM_ERR_CHECKPOINT
     use fsym_kinds, only: wp, ik
-    use fsym_kernel, only: kernel_state_t
+    use fsym_kernel, only: kernel_state_t, fsym_kernel_request, KERNEL_NPACK, REQ_NONE
     use fsym_checkpoint, only: ckpt_clock_t, fsym_checkpoint_length, fsym_checkpoint_pack
     use fsym_legacy_work, only: legacy_check, legacy_load, LEGACY_KO, LEGACY_KC
     implicit none
@@ -418,20 +416,22 @@ subroutine FSYMCK(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
     integer, intent(out) :: INFO                !! status
     type(kernel_state_t) :: ks
     type(ckpt_clock_t) :: clock
-    integer :: nop, kw
+    integer :: nop, kw, req, at, into, given
     INFO = legacy_check(ND, N, LRW, LIW, IW)
     if (INFO /= FSYM_SUCCESS) return
     nop = IW(4); kw = LEGACY_KC + 2 * nop
     if (LCK < fsym_checkpoint_length(nop, ND, N, IW(5))) then
         INFO = FSYM_ERR_CHECKPOINT; return
     end if
-    call legacy_load(IW(8:LEGACY_KO - 1), RW(1:4), ks)
-    if (ks%active) then
+    call legacy_load(LIW, IW, RW(1:KERNEL_NPACK), ks, INFO)
+    if (INFO /= FSYM_SUCCESS) return
+    call fsym_kernel_request(ks, req, at, into, given)
+    if (req /= REQ_NONE) then
         INFO = FSYM_ERR_BAD_REQUEST; return
     end if
     call fsym_checkpoint_pack(IW(LEGACY_KO:LEGACY_KO + nop - 1), RW(LEGACY_KC:kw - nop - 1), &
                               RW(kw - nop:kw - 1), ks, clock, X, V, &
-                              RW(kw:kw - 1 + ND * N * ks%nslot), CK)
+                              RW(kw:kw - 1 + ND * N * IW(5)), CK)
 end subroutine FSYMCK
 
 !> Restart: restore X, V and the work arrays from a checkpoint CK written by FSYMCK (or by
@@ -441,7 +441,7 @@ end subroutine FSYMCK
 subroutine FSYMCR(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
     use fsym_status, only: FSYM_SUCCESS
     use fsym_kinds, only: wp, ik
-    use fsym_kernel, only: kernel_state_t
+    use fsym_kernel, only: kernel_state_t, KERNEL_NPACK
     use fsym_checkpoint, only: ckpt_clock_t, fsym_checkpoint_unpack
     use fsym_legacy_work, only: legacy_check, legacy_load, legacy_store, LEGACY_KO, LEGACY_KC
     implicit none
@@ -461,12 +461,13 @@ subroutine FSYMCR(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
     INFO = legacy_check(ND, N, LRW, LIW, IW)
     if (INFO /= FSYM_SUCCESS) return
     nop = IW(4); kw = LEGACY_KC + 2 * nop
-    call legacy_load(IW(8:LEGACY_KO - 1), RW(1:4), ks)
+    call legacy_load(LIW, IW, RW(1:KERNEL_NPACK), ks, INFO)
+    if (INFO /= FSYM_SUCCESS) return
     call fsym_checkpoint_unpack(CK, IW(LEGACY_KO:LEGACY_KO + nop - 1), &
                                 RW(LEGACY_KC:kw - nop - 1), RW(kw - nop:kw - 1), ks, clock, &
-                                X, V, RW(kw:kw - 1 + ND * N * ks%nslot), INFO, msg)
+                                X, V, RW(kw:kw - 1 + ND * N * IW(5)), INFO, msg)
     if (INFO /= FSYM_SUCCESS) return
-    call legacy_store(ks, IW(8:LEGACY_KO - 1), RW(1:4))
+    call legacy_store(ks, RW(1:KERNEL_NPACK))
     IW(7) = 0
 end subroutine FSYMCR
 

@@ -1,15 +1,15 @@
 !> What the F77-callable entry points of `fsym_legacy.f90` share: the layout of the flat work
 !> arrays (the only place the kernel's typed state is kept in flat arrays), the lengths a
 !> method needs, the check that a work array was set up for the caller's dimensions, and
-!> the two small force models through which the F77 face drives the one kernel: one calls
-!> the caller's EXTERNAL routines, the other suspends the kernel for reverse communication.
+!> the force model through which the F77 face drives the one kernel with the caller's
+!> EXTERNAL routines (reverse communication asks the kernel to suspend instead).
 !>
-!>     IW(1)  magic (initialised)        RW(1) h of the step in progress
-!>     IW(2)  ND   IW(3) N               RW(2) shift of the cached extrapolated force
-!>     IW(4)  NOP  IW(5) NSLOT           RW(3) force evaluations, RW(4) gradient evaluations
-!>     IW(6)  method id                  RW(5:) C(NOP), U(NOP), then the slots W(ND,N,NSLOT)
+!>     IW(1)  magic (initialised)        RW(1:18) the kernel state, packed by the kernel
+!>     IW(2)  ND   IW(3) N                        (RW(1) h of the step in progress, RW(2)
+!>     IW(4)  NOP  IW(5) NSLOT                    shift, RW(3) force and RW(4) gradient
+!>     IW(6)  method id                           evaluations)
 !>     IW(7)  steps completed by the last FSYMST call
-!>     IW(8:) the kernel state (LEGACY_NKI integers), then the op codes (NOP)
+!>     IW(8:) the op codes (NOP)         RW(19:) C(NOP), U(NOP), then the slots W(ND,N,NSLOT)
 module fsym_legacy_work
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_UNKNOWN_METHOD, FSYM_ERR_SHAPE, &
                            FSYM_ERR_WORK_SIZE, FSYM_ERR_NOT_INITIALIZED
@@ -17,15 +17,15 @@ module fsym_legacy_work
     use fsym_scheme, only: scheme_t
     use fsym_paper_schemes, only: fsym_scheme_by_name, fsym_catalogue, FSYM_NAME_LEN
     use fsym_force, only: force_model_t
-    use fsym_kernel, only: kernel_state_t, fsym_kernel_layout, KERNEL_SUSPEND
+    use fsym_kernel, only: kernel_state_t, fsym_kernel_layout, fsym_kernel_slots, &
+                           fsym_kernel_pack, fsym_kernel_unpack, KERNEL_NPACK
     use fsym_legacy_api, only: fsym_legacy_accel, fsym_legacy_grad
     implicit none
     private
 
     integer, parameter, public :: LEGACY_MAGIC = 20260  !! IW(1) of a set-up work array
-    integer, parameter, public :: LEGACY_NKI = 21       !! integers of the kernel state
-    integer, parameter, public :: LEGACY_KO = 8 + LEGACY_NKI  !! IW index of the op codes
-    integer, parameter, public :: LEGACY_KC = 5         !! RW index of the coefficients
+    integer, parameter, public :: LEGACY_KO = 8         !! IW index of the op codes
+    integer, parameter, public :: LEGACY_KC = KERNEL_NPACK + 1  !! RW index of the coefficients
 
     !> The caller's EXTERNAL acceleration (and gradient) routines as a force model.
     type, extends(force_model_t), public :: legacy_model_t
@@ -36,14 +36,6 @@ module fsym_legacy_work
         procedure :: gradient => legacy_gradient          !! calls GRAD
         procedure :: has_gradient => legacy_has_gradient  !! GRAD given
     end type legacy_model_t
-
-    !> Reverse communication: every evaluation suspends the kernel; the caller supplies it.
-    type, extends(force_model_t), public :: suspend_model_t
-    contains
-        procedure :: acceleration => suspend_acceleration  !! suspends
-        procedure :: gradient => suspend_gradient          !! suspends
-        procedure :: has_gradient => suspend_has_gradient  !! true
-    end type suspend_model_t
 
     public :: legacy_sizes, legacy_scheme_sizes, legacy_setup, legacy_ok, legacy_check
     public :: legacy_load, legacy_store
@@ -86,7 +78,7 @@ contains
             info = FSYM_ERR_SHAPE; return
         end if
         call fsym_kernel_layout(s%op, .false., nd, n, ks)
-        r = LEGACY_KC - 1 + 2 * s%nop + int(nd, ik) * int(n, ik) * ks%nslot
+        r = LEGACY_KC - 1 + 2 * s%nop + int(nd, ik) * int(n, ik) * fsym_kernel_slots(ks)
         if (r > huge(lrw)) then
             info = FSYM_ERR_WORK_SIZE; return
         end if
@@ -115,9 +107,10 @@ contains
         iw(1:need_i) = 0
         rw(1:need_r) = 0.0_wp
         call fsym_kernel_layout(s%op, .false., nd, n, ks)
-        call legacy_store(ks, iw(8:LEGACY_KO - 1), rw(1:4))
+        call legacy_store(ks, rw(1:KERNEL_NPACK))
         iw(1) = LEGACY_MAGIC
-        iw(2) = nd; iw(3) = n; iw(4) = s%nop; iw(5) = ks%nslot; iw(6) = meth; iw(7) = 0
+        iw(2) = nd; iw(3) = n; iw(4) = s%nop; iw(5) = fsym_kernel_slots(ks); iw(6) = meth
+        iw(7) = 0
         iw(LEGACY_KO:LEGACY_KO + s%nop - 1) = s%op
         rw(LEGACY_KC:LEGACY_KC + s%nop - 1) = s%c
         rw(LEGACY_KC + s%nop:LEGACY_KC + 2 * s%nop - 1) = s%u
@@ -149,34 +142,26 @@ contains
         info = FSYM_SUCCESS
     end function legacy_check
 
-    !> The kernel state kept in IW(8:) and RW(1:4).
-    pure subroutine legacy_load(iw, rw, ks)
-        integer, intent(in) :: iw(LEGACY_NKI)     !! IW(8:)
-        real(wp), intent(in) :: rw(4)             !! RW(1:4)
-        type(kernel_state_t), intent(out) :: ks   !! the state
-        ks%d = iw(1); ks%n = iw(2); ks%nslot = iw(3)
-        ks%ia = iw(4); ks%ig = iw(5); ks%iqe = iw(6); ks%iae = iw(7)
-        ks%iq0 = iw(8); ks%iv0 = iw(9); ks%iqlast = iw(10)
-        ks%iqc = iw(11); ks%ivc = iw(12); ks%iqc0 = iw(13); ks%ivc0 = iw(14)
-        ks%comp = iw(15) /= 0; ks%have_a = iw(16) /= 0; ks%have_g = iw(17) /= 0
-        ks%have_x = iw(18) /= 0; ks%active = btest(iw(19), 0)
-        ks%qsaved = btest(iw(19), 1); ks%vsaved = btest(iw(19), 2)
-        ks%pc = iw(20); ks%req = iw(21)
-        ks%h = rw(1); ks%xshift = rw(2)
-        ks%nf = int(rw(3), ik); ks%ng = int(rw(4), ik)
+    !> The kernel state of the work arrays: laid out from IW (the op codes, ND, N) and taken
+    !> over from its packed image RW(1:KERNEL_NPACK). `info`: FSYM_ERR_NOT_INITIALIZED when the
+    !> image does not fit the layout or holds a flag or count out of range (RW overwritten).
+    pure subroutine legacy_load(liw, iw, rw, ks, info)
+        integer, intent(in) :: liw                    !! length of IW (checked by legacy_check)
+        integer, intent(in) :: iw(liw)                !! IW
+        real(wp), intent(in) :: rw(KERNEL_NPACK)      !! RW(1:KERNEL_NPACK)
+        type(kernel_state_t), intent(out) :: ks       !! the state
+        integer, intent(out) :: info                  !! status
+        character(len=80) :: msg
+        call fsym_kernel_layout(iw(LEGACY_KO:LEGACY_KO + iw(4) - 1), .false., iw(2), iw(3), ks)
+        call fsym_kernel_unpack(rw, ks, info, msg)
+        if (info /= FSYM_SUCCESS) info = FSYM_ERR_NOT_INITIALIZED
     end subroutine legacy_load
 
-    !> Store the kernel state into IW(8:) and RW(1:4).
-    pure subroutine legacy_store(ks, iw, rw)
-        type(kernel_state_t), intent(in) :: ks    !! the state
-        integer, intent(out) :: iw(LEGACY_NKI)    !! IW(8:)
-        real(wp), intent(out) :: rw(4)            !! RW(1:4)
-        iw = [ks%d, ks%n, ks%nslot, ks%ia, ks%ig, ks%iqe, ks%iae, ks%iq0, ks%iv0, ks%iqlast, &
-              ks%iqc, ks%ivc, ks%iqc0, ks%ivc0, merge(1, 0, ks%comp), merge(1, 0, ks%have_a), &
-              merge(1, 0, ks%have_g), merge(1, 0, ks%have_x), &
-              merge(1, 0, ks%active) + merge(2, 0, ks%qsaved) + merge(4, 0, ks%vsaved), ks%pc, &
-              ks%req]
-        rw = [ks%h, ks%xshift, real(ks%nf, wp), real(ks%ng, wp)]
+    !> Store the kernel state into RW(1:KERNEL_NPACK).
+    pure subroutine legacy_store(ks, rw)
+        type(kernel_state_t), intent(in) :: ks        !! the state
+        real(wp), intent(out) :: rw(KERNEL_NPACK)     !! RW(1:KERNEL_NPACK)
+        call fsym_kernel_pack(ks, rw)
     end subroutine legacy_store
 
     subroutine legacy_acceleration(self, q, a, stat)
@@ -200,27 +185,5 @@ contains
         class(legacy_model_t), intent(in) :: self  !! the model
         legacy_has_gradient = associated(self%grad)
     end function legacy_has_gradient
-
-    subroutine suspend_acceleration(self, q, a, stat)
-        class(suspend_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in), contiguous :: q(:, :)    !! positions (d, n)
-        real(wp), intent(out), contiguous :: a(:, :)   !! not written: the caller fills it
-        integer, intent(inout) :: stat                 !! KERNEL_SUSPEND
-        stat = KERNEL_SUSPEND
-    end subroutine suspend_acceleration
-
-    subroutine suspend_gradient(self, q, a, g, stat)
-        class(suspend_model_t), intent(inout) :: self  !! the model
-        real(wp), intent(in), contiguous :: q(:, :)    !! positions (d, n)
-        real(wp), intent(in), contiguous :: a(:, :)    !! accelerations at q
-        real(wp), intent(out), contiguous :: g(:, :)   !! not written: the caller fills it
-        integer, intent(inout) :: stat                 !! KERNEL_SUSPEND
-        stat = KERNEL_SUSPEND
-    end subroutine suspend_gradient
-
-    logical function suspend_has_gradient(self)
-        class(suspend_model_t), intent(in) :: self  !! the model
-        suspend_has_gradient = .true.
-    end function suspend_has_gradient
 
 end module fsym_legacy_work

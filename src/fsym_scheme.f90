@@ -22,16 +22,26 @@
 !> `FSYM_ERR_NO_MEMORY`, never as an abort. Character results have lengths fixed by
 !> specification expressions (no hidden static buffer), so the module is thread-safe.
 module fsym_scheme
-    use fsym_kinds, only: wp
+    use fsym_kinds, only: wp, ik
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_SHAPE, FSYM_ERR_INCONSISTENT_SCHEME, &
                            FSYM_ERR_NO_MEMORY, fsym_report
+    use fsym_force, only: force_model_t
+    use fsym_kernel, only: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK, kernel_state_t, &
+                           fsym_kernel_layout, fsym_kernel_slots, fsym_kernel_run, &
+                           fsym_kernel_counts
     implicit none
     private
 
-    integer, parameter, public :: OP_DRIFT = 1        !! q <- q + c h v
-    integer, parameter, public :: OP_KICK = 2         !! v <- v + c h a(q)
-    integer, parameter, public :: OP_GRAD_KICK = 3    !! v <- v + c h a(q) + u h^3 g(q)
-    integer, parameter, public :: OP_EXTRAP_KICK = 4  !! v <- v + c h a(q + u h^2 a(q))
+    ! the op codes are the kernel's (it alone knows what they do); re-exported here
+    public :: OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK
+
+    !> A model of zero forces with a gradient term, on which the kernel counts evaluations.
+    type, extends(force_model_t) :: counting_model_t
+    contains
+        procedure :: acceleration => counting_acceleration
+        procedure :: gradient => counting_gradient
+        procedure :: has_gradient => counting_has_gradient
+    end type counting_model_t
 
     !> One splitting method: its stages and what is known about it.
     type, public :: scheme_t
@@ -164,7 +174,7 @@ contains
     end subroutine fsym_scheme_take
 
     !> Metadata that follow from the table alone.
-    pure subroutine fill_metadata(s)
+    subroutine fill_metadata(s)
         type(scheme_t), intent(inout) :: s
         integer :: k, n
         n = s%nop
@@ -179,43 +189,51 @@ contains
             end if
         end do
         s%fsal = s%op(1) /= OP_DRIFT .and. s%op(n) /= OP_DRIFT
-        call count_evaluations(s%op, s%u, s%nforce, s%ngrad)
+        call count_evaluations(s%op, s%c, s%u, s%nforce, s%ngrad)
     end subroutine fill_metadata
 
-    !> Evaluations per step in steady state, found by running the kernel's cache rules over two
-    !> consecutive steps and counting the second: the force at the end of a step is reused by
-    !> the next; a drift invalidates every cached quantity.
-    pure subroutine count_evaluations(op, u, nforce, ngrad)
+    !> Evaluations per step in steady state, counted by the kernel itself: two steps on one
+    !> particle of a zero force, the second counted (its cache rules decide, nothing else).
+    subroutine count_evaluations(op, c, u, nforce, ngrad)
         integer, intent(in) :: op(:)
-        real(wp), intent(in) :: u(:)
+        real(wp), intent(in) :: c(:), u(:)
         integer, intent(out) :: nforce, ngrad
-        logical :: have_a, have_g, have_x
-        real(wp) :: x_shift
-        integer :: pass, k
-        have_a = .false.; have_g = .false.; have_x = .false.; x_shift = 0.0_wp
-        do pass = 1, 2
-            nforce = 0; ngrad = 0
-            do k = 1, size(op)
-                select case (op(k))
-                case (OP_DRIFT)
-                    have_a = .false.; have_g = .false.; have_x = .false.
-                case (OP_KICK)
-                    if (.not. have_a) nforce = nforce + 1
-                    have_a = .true.
-                case (OP_GRAD_KICK)
-                    if (.not. have_a) nforce = nforce + 1
-                    if (.not. have_g) ngrad = ngrad + 1
-                    have_a = .true.; have_g = .true.
-                case (OP_EXTRAP_KICK)
-                    if (.not. have_a) nforce = nforce + 1
-                    if (.not. (have_x .and. x_shift == u(k))) nforce = nforce + 1
-                    have_a = .true.; have_x = .true.; x_shift = u(k)
-                case default
-                    ! op codes are validated when a scheme is built
-                end select
-            end do
-        end do
+        type(counting_model_t) :: model
+        type(kernel_state_t) :: ks
+        real(wp) :: q(1, 1), v(1, 1), w(1, 1, 12)
+        integer(ik) :: nd, nf0, ng0, nf, ng
+        integer :: st
+        q = 1.0_wp; v = 0.0_wp; w = 0.0_wp
+        call fsym_kernel_layout(op, .false., 1, 1, ks)
+        nforce = 0; ngrad = 0
+        if (fsym_kernel_slots(ks) > size(w, 3)) return
+        call fsym_kernel_run(size(op), op, c, u, model, ks, q, v, w, 1.0_wp, 1_ik, nd, st)
+        call fsym_kernel_counts(ks, nf0, ng0)
+        call fsym_kernel_run(size(op), op, c, u, model, ks, q, v, w, 1.0_wp, 1_ik, nd, st)
+        call fsym_kernel_counts(ks, nf, ng)
+        nforce = int(nf - nf0); ngrad = int(ng - ng0)
     end subroutine count_evaluations
+
+    subroutine counting_acceleration(self, q, a, stat)
+        class(counting_model_t), intent(inout) :: self
+        real(wp), intent(in), contiguous :: q(:, :)
+        real(wp), intent(out), contiguous :: a(:, :)
+        integer, intent(inout) :: stat
+        a = 0.0_wp
+    end subroutine counting_acceleration
+
+    subroutine counting_gradient(self, q, a, g, stat)
+        class(counting_model_t), intent(inout) :: self
+        real(wp), intent(in), contiguous :: q(:, :), a(:, :)
+        real(wp), intent(out), contiguous :: g(:, :)
+        integer, intent(inout) :: stat
+        g = 0.0_wp
+    end subroutine counting_gradient
+
+    logical function counting_has_gradient(self)
+        class(counting_model_t), intent(in) :: self
+        counting_has_gradient = .true.
+    end function counting_has_gradient
 
     !> True when any stage is a gradient kick.
     pure logical function scheme_needs_gradient(self)
