@@ -37,6 +37,7 @@ module fsym_nbody
     use fsym_status, only: fsym_report, FSYM_SUCCESS, FSYM_ERR_SHAPE, FSYM_ERR_BAD_PARAMETER, &
                            FSYM_ERR_NOT_INITIALIZED
     use fsym_force, only: force_model_t
+    use fsym_nbody_frequency, only: fsym_nbody_local_frequency
     implicit none
     private
 
@@ -54,6 +55,9 @@ module fsym_nbody
         procedure :: has_gradient => nbody_has
         procedure :: potential => nbody_potential_tb
         procedure :: has_potential => nbody_has
+        procedure :: local_frequency => nbody_frequency
+            !! largest pair frequency 2 G (m_i + m_j)/s_ij^3, for the step-size guard
+        procedure :: has_frequency => nbody_has
         procedure :: energy => nbody_energy
         procedure :: init => nbody_init
     end type nbody_model_t
@@ -819,6 +823,25 @@ contains
     end subroutine model_pairs
 
     !> Provided.
+    !> The largest local frequency squared over the pairs (`fsym_nbody_local_frequency`) and
+    !> the separation where it occurs: the step-size guard's measure of a close encounter.
+    subroutine nbody_frequency(self, q, omega2, r, stat)
+        class(nbody_model_t), intent(inout) :: self   !! the model
+        real(wp), intent(in), contiguous :: q(:, :)   !! positions (3, n)
+        real(wp), intent(out) :: omega2               !! largest 2 G (m_i + m_j) / s_ij^3
+        real(wp), intent(out) :: r                    !! that pair's separation
+        integer, intent(inout) :: stat                !! 1: masses not set for these bodies
+        omega2 = 0.0_wp; r = 0.0_wp
+        if (.not. allocated(self%m)) then
+            stat = 1; return
+        end if
+        if (size(self%m) /= size(q, 2)) then
+            stat = 1; return
+        end if
+        call fsym_nbody_local_frequency(size(q, 1), size(q, 2), self%m, self%g, self%eps, q, &
+                                        omega2, r)
+    end subroutine nbody_frequency
+
     logical function nbody_has(self)
         class(nbody_model_t), intent(in) :: self  !! the model
         nbody_has = allocated(self%m)
