@@ -94,8 +94,10 @@ contains
         end if
         if (s%needs_gradient() .and. .not. model%has_gradient()) then
             call fsym_report(FSYM_ERR_NO_GRADIENT, 'method '//s%name// &
-                             ' needs the gradient term; give the model a gradient or pass'// &
-                             ' extrapolate=.true. for '//s%name//'''', stat, errmsg)
+                             ' needs the gradient term g = grad |a|^2, which this model does'// &
+                             ' not provide: override gradient and has_gradient in its type'// &
+                             ' (see doc/pages/force.md), or pass extrapolate=.true. to run '// &
+                             s%name//''' (no gradient needed)', stat, errmsg)
             return
         end if
         comp = .false.
@@ -217,7 +219,7 @@ contains
             left = left - ndone
             if (ndone == chunk) then
                 stop = .false.
-                call observer%observe(q, v, self%time(), self%steps(), stop)
+                call observer%observe_model(model, q, v, self%time(), self%steps(), stop)
                 call self%note_stop(stop)
                 if (stop) return
             end if
@@ -288,7 +290,7 @@ contains
             call fsym_report(st, fsym_guard_message(self%guard, self%sc%name, self%time(), &
                              self%steps() + 1), stat, errmsg)
         case default
-            call report_step_failure(self, st, fsym_kernel_stage(self%ks) == 0, stat, errmsg)
+            call report_step_failure(self, st, fsym_kernel_stage(self%ks) == 0, q, v, stat, errmsg)
         end select
     end subroutine report
 
@@ -372,10 +374,11 @@ contains
 
     !> Report a failed step (rejected on entry when `at_begin`). The message is built in a
     !> fixed buffer without allocation (a failing step should not allocate to say why).
-    subroutine report_step_failure(self, st, at_begin, stat, errmsg)
+    subroutine report_step_failure(self, st, at_begin, q, v, stat, errmsg)
         class(integrator_t), intent(in) :: self
         integer, intent(in) :: st
         logical, intent(in) :: at_begin
+        real(wp), intent(in) :: q(:, :), v(:, :)
         integer, intent(out), optional :: stat
         character(len=*), intent(inout), optional :: errmsg
         character(len=320) :: buf
@@ -398,9 +401,37 @@ contains
                 call fsym_text_put(buf, p, fsym_op_name(k))
                 call fsym_text_put(buf, p, '); state restored')
             end if
+        else if (st == FSYM_ERR_NONFINITE_STATE) then
+            call fsym_text_put(buf, p, ': refused, ')
+            call name_nonfinite(buf, p, 'q', q)
+            if (all(abs(q) <= huge(q))) call name_nonfinite(buf, p, 'v', v)
+            call fsym_text_put(buf, p, ' on entry (component, particle); nothing changed')
         end if
         call fsym_report(st, buf(1:p), stat, errmsg)
     end subroutine report_step_failure
+
+    !> Append `name(i, j) = NaN` (or +Inf, -Inf) for the first value of x that is not finite.
+    pure subroutine name_nonfinite(buf, p, name, x)
+        character(len=*), intent(inout) :: buf
+        integer, intent(inout) :: p
+        character(len=*), intent(in) :: name
+        real(wp), intent(in) :: x(:, :)
+        integer :: i, j
+        do j = 1, size(x, 2)
+            do i = 1, size(x, 1)
+                if (abs(x(i, j)) <= huge(x)) cycle
+                call fsym_text_put(buf, p, name//'(')
+                call fsym_text_put_int(buf, p, int(i, ik))
+                call fsym_text_put(buf, p, ', ')
+                call fsym_text_put_int(buf, p, int(j, ik))
+                call fsym_text_put(buf, p, ') = ')
+                if (x(i, j) /= x(i, j)) call fsym_text_put(buf, p, 'NaN')
+                if (x(i, j) > huge(x)) call fsym_text_put(buf, p, '+Inf')
+                if (x(i, j) < -huge(x)) call fsym_text_put(buf, p, '-Inf')
+                return
+            end do
+        end do
+    end subroutine name_nonfinite
 
     !> Release the workspace; `init` must be called again before use.
     subroutine integrator_destroy(self)

@@ -11,27 +11,15 @@ module fsym_stepper
     public :: stepper_run
 
     !> Receives the state every `every` steps of a `run` (optional argument); it may stop
-    !> the run. User data travels by extending this type.
+    !> the run. User data travels by extending this type. Override `observe` (the state), or
+    !> `observe_model` to be given the run's force model too (e.g. for the energy); the
+    !> steppers call `observe_model`, whose default calls `observe`.
     type, abstract, public :: observer_t
     contains
-        procedure(observe_iface), deferred :: observe   !! look at the state; may stop the run
+        procedure :: observe => observer_ignore   !! look at the state; may stop the run
+        procedure :: observe_model => observer_pass
+            !! look at the state and the model; may stop the run (default: `observe`)
     end type observer_t
-
-    !> Interface of `observer_t%observe`.
-    abstract interface
-        subroutine observe_iface(self, q, v, t, step, stop)
-            !! Called after step number `step` (counted since `init`) at time t. Set `stop`
-            !! to .true. to end the run there (it then returns success).
-            import :: observer_t, wp, ik
-            implicit none
-            class(observer_t), intent(inout) :: self          !! the observer
-            real(wp), intent(in), contiguous :: q(:, :)       !! positions (d, n)
-            real(wp), intent(in), contiguous :: v(:, :)       !! velocities (d, n)
-            real(wp), intent(in) :: t                         !! time
-            integer(ik), intent(in) :: step                   !! steps completed since init
-            logical, intent(inout) :: stop                    !! .false. on entry
-        end subroutine observe_iface
-    end interface
 
     !> A time stepper for q' = v, v' = a(q) on arrays q(d,n), v(d,n).
     type, abstract, public :: stepper_t
@@ -99,6 +87,31 @@ module fsym_stepper
 
 contains
 
+    !> Default `observe`: looks at nothing (override it, or `observe_model`). Called after step
+    !> number `step` (counted since `init`) at time t; set `stop` to .true. to end the run
+    !> there (it then returns success).
+    subroutine observer_ignore(self, q, v, t, step, stop)
+        class(observer_t), intent(inout) :: self          !! the observer
+        real(wp), intent(in), contiguous :: q(:, :)       !! positions (d, n)
+        real(wp), intent(in), contiguous :: v(:, :)       !! velocities (d, n)
+        real(wp), intent(in) :: t                         !! time
+        integer(ik), intent(in) :: step                   !! steps completed since init
+        logical, intent(inout) :: stop                    !! .false. on entry
+    end subroutine observer_ignore
+
+    !> Default `observe_model`: calls `observe` (the model is not needed there). Override it
+    !> to see the run's force model, e.g. `model%potential` for the energy.
+    subroutine observer_pass(self, model, q, v, t, step, stop)
+        class(observer_t), intent(inout) :: self          !! the observer
+        class(force_model_t), intent(inout) :: model      !! the run's force model
+        real(wp), intent(in), contiguous :: q(:, :)       !! positions (d, n)
+        real(wp), intent(in), contiguous :: v(:, :)       !! velocities (d, n)
+        real(wp), intent(in) :: t                         !! time
+        integer(ik), intent(in) :: step                   !! steps completed since init
+        logical, intent(inout) :: stop                    !! .false. on entry
+        call self%observe(q, v, t, step, stop)
+    end subroutine observer_pass
+
     !> Take `nsteps` steps of size h; stops at the first failing step, leaving the state of the
     !> last good step (check `stat`; `steps()` tells how far it got). With `observer`, its
     !> `observe` is called after every `every` (default 1) steps of this call; it may stop
@@ -134,7 +147,7 @@ contains
             if (st /= FSYM_SUCCESS) exit
             if (present(observer) .and. mod(k, ke) == 0) then
                 stop = .false.
-                call observer%observe(q, v, self%time(), self%nsteps, stop)
+                call observer%observe_model(model, q, v, self%time(), self%nsteps, stop)
                 self%stopped = stop
                 if (stop) exit
             end if
@@ -216,7 +229,7 @@ contains
             end if
             if (present(observer)) then
                 stop = .false.
-                call observer%observe(q, v, t_end, self%nsteps, stop)
+                call observer%observe_model(model, q, v, t_end, self%nsteps, stop)
             end if
         end if
         call self%set_time(t_end)
