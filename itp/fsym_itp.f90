@@ -73,7 +73,8 @@ contains
     !> Set up the propagator: a grid of `n(j)` points (even) on a box of sides `box(j)`
     !> (centred on 0), the method `method` (`CN`, `Strang`, or a label of the catalogue such
     !> as `A`, `C`, `A5`), the potential `v` (npts values, axis 1 fastest), the step `tau`.
-    !> Optional: `scheme` a table of one's own in place of the label, `dv(npts, d)` the gradient of V (else spectral; give it for a trap), `g`
+    !> Optional: `scheme` a table of one's own in place of the label, `dv(npts, d)` the
+    !> gradient of V (else spectral; give it for a trap), `g`
     !> the Gross-Pitaevskii coupling (one state only), `nstates` the number of states.
     subroutine itp_init(self, n, box, v, method, tau, stat, errmsg, dv, g, nstates, scheme)
         class(fsym_itp_t), intent(inout) :: self            !! the propagator
@@ -148,8 +149,13 @@ contains
             call fsym_pass(st, msg, stat, errmsg); return
         end if
         nst = size(self%stage)
-        allocate (self%v(npts), self%dv(npts, d), self%gsq(npts), self%pfac(npts, nst), &
-                  self%kfac(self%grid%nk, nst), self%shift(nst), self%e_norm(ns), stat=ist)
+        allocate (self%v(npts), stat=ist)
+        if (ist == 0) allocate (self%dv(npts, d), stat=ist)
+        if (ist == 0) allocate (self%gsq(npts), stat=ist)
+        if (ist == 0) allocate (self%pfac(npts, nst), stat=ist)
+        if (ist == 0) allocate (self%kfac(self%grid%nk, nst), stat=ist)
+        if (ist == 0) allocate (self%shift(nst), stat=ist)
+        if (ist == 0) allocate (self%e_norm(ns), stat=ist)
         if (ist /= 0) then
             call fsym_report(FSYM_ERR_NO_MEMORY, 'imaginary time: potential and factors', &
                              stat, errmsg)
@@ -177,8 +183,9 @@ contains
         do k = 1, nst
             if (self%stage(k)%kind /= ITP_POTENTIAL) self%fft_per_step = self%fft_per_step + 2
         end do
-        if (self%g /= 0.0_wp .and. any(self%stage(:)%u /= 0.0_wp)) &
+        if (self%g /= 0.0_wp .and. any(self%stage(:)%u /= 0.0_wp)) then
             self%fft_per_step = self%fft_per_step + 1 + d
+        end if
         self%e_norm(:) = 0.0_wp
         self%nsteps = 0
         self%ready = .true.

@@ -93,8 +93,11 @@ contains
         self%npts = product(self%n)
         self%npad = 8 * ((self%npts + 7) / 8)
         self%nk = (self%n(1) / 2 + 1) * self%n(2) * self%n(3)
-        allocate (self%x(self%npts, d), self%kvec(self%nk, d), self%k2(self%nk), &
-                  self%kweight(self%nk), self%outer(self%nk), stat=ist)
+        allocate (self%x(self%npts, d), stat=ist)
+        if (ist == 0) allocate (self%kvec(self%nk, d), stat=ist)
+        if (ist == 0) allocate (self%k2(self%nk), stat=ist)
+        if (ist == 0) allocate (self%kweight(self%nk), stat=ist)
+        if (ist == 0) allocate (self%outer(self%nk), stat=ist)
         if (ist /= 0) then
             call fsym_report(FSYM_ERR_NO_MEMORY, 'itp grid arrays', stat, errmsg)
             return

@@ -153,8 +153,8 @@ contains
             cached = p%energy(1)
             call p%resolved(1, st, msg)
             if (st /= 0) write (output_unit, '(2a)') '# gp3d reference: ', trim(msg)
-            write (output_unit, '(a,es24.16,2a)') '# gp3d reference energy (A5, tau = 0.005) ', &
-                cached, '; resolution check: ', trim(merge('ok                  ', msg(1:20), st == 0))
+            write (output_unit, '(a,es24.16,a)') '# gp3d reference energy (A5, tau = 0.005) ', &
+                cached, trim(merge(' (resolved)  ', ' (see above)', st == 0))
             done = .true.
             call p%destroy()
         end if
