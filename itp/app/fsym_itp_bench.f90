@@ -9,7 +9,7 @@
 !> enough that the excited components are below 1e-12; the relative error of <H> is then the
 !> method's. Per method a sweep of tau (halving from tau0) until the error is below 1e-8; the
 !> FFTs and seconds to 1e-8 are interpolated log-log between the two sweep points around 1e-8
-!> (`--quick` stops a sweep whose next point would exceed a step budget; the value is then
+!> (`--quick` stops a sweep whose next point would exceed 20000 FFTs in 3-D; the value is then
 !> extrapolated with the fitted order and a `#` line says so). Seconds per step come from a
 !> separate timing pass: blocks of steps of every method interleaved, `reps` repetitions, the
 !> minimum taken, the spread printed. Output, per problem and method:
@@ -154,7 +154,7 @@ contains
             call p%resolved(1, st, msg)
             if (st /= 0) write (output_unit, '(2a)') '# gp3d reference: ', trim(msg)
             write (output_unit, '(a,es24.16,a)') '# gp3d reference energy (A5, tau = 0.005) ', &
-                cached, trim(merge(' (resolved)  ', ' (see above)', st == 0))
+                cached, trim(merge(' (resolved) ', ' (see above)', st == 0))
             done = .true.
             call p%destroy()
         end if
@@ -216,7 +216,7 @@ contains
 
         call setup(name, n, box, v, dv, psi0, g, exact, tend)
         call timing(name, tpp, spread)
-        budget = 40000_ik   ! FFTs of one run
+        budget = 20000_ik   ! FFTs of one run
         if (size(n) == 1) budget = 1000000_ik
         if (.not. quick) budget = 20 * budget
         do m = 1, nmeth
