@@ -20,6 +20,7 @@ program fsym_itp_bench
     use, intrinsic :: iso_fortran_env, only: int64, output_unit
     use fsym_kinds, only: wp, ik
     use fsym_itp, only: fsym_itp_t
+    use fsym_itp_problems, only: fsym_itp_problem
     implicit none
     integer, parameter :: nmeth = 7, maxpts = 14
     character(len=8), parameter :: meths(nmeth) = [character(len=8) :: 'CN', 'Strang', 'A', &
@@ -55,50 +56,10 @@ contains
         integer, allocatable, intent(out) :: n(:)
         real(wp), allocatable, intent(out) :: box(:), v(:), dv(:, :), psi0(:)
         real(wp), intent(out) :: g, exact, tend
-        real(wp) :: w(3), r(3), side
-        integer :: m, i, j, k, idx
-        g = 0.0_wp
+        real(wp) :: side
+        call fsym_itp_problem(name, n, side, v, dv, psi0, g, exact)
+        box = spread(side, 1, size(n))
         tend = 16.0_wp
-        select case (name)
-        case ('pt1d')
-            m = 256
-            n = [m]
-            box = [40.0_wp]
-            allocate (v(m), dv(m, 1), psi0(m))
-            do i = 1, m
-                r(1) = -20.0_wp + (i - 1) * 40.0_wp / m
-                v(i) = -6.0_wp / cosh(r(1))**2
-                dv(i, 1) = 12.0_wp * tanh(r(1)) / cosh(r(1))**2
-                psi0(i) = exp(-r(1)**2 / 8.0_wp)
-            end do
-            exact = -4.5_wp
-        case default
-            m = 32
-            side = 12.0_wp
-            w = 1.0_wp
-            exact = 1.5_wp
-            if (name == 'gp3d') then
-                m = 36
-                side = 10.0_wp
-                w = [1.0_wp, 1.5_wp, 2.0_wp]
-                g = 20.0_wp
-            end if
-            n = [m, m, m]
-            box = [side, side, side]
-            allocate (v(m**3), dv(m**3, 3), psi0(m**3))
-            idx = 0
-            do k = 1, m
-                do j = 1, m
-                    do i = 1, m
-                        idx = idx + 1
-                        r = -0.5_wp * side + ([i, j, k] - 1) * side / m
-                        v(idx) = 0.5_wp * sum((w * r)**2)
-                        dv(idx, :) = w**2 * r
-                        psi0(idx) = exp(-sum(r**2) / 3.4_wp)
-                    end do
-                end do
-            end do
-        end select
     end subroutine setup
 
     !> Relative <H> error after t = tend at step tau; FFTs done.

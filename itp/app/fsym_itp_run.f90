@@ -17,12 +17,13 @@ program fsym_itp_run
     use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
     use fsym_kinds, only: wp, ik
     use fsym_itp, only: fsym_itp_t
+    use fsym_itp_problems, only: fsym_itp_problem
     use fsym_h5, only: h5_file_t, fsym_h5md_header
     implicit none
     type(fsym_itp_t) :: p
     type(h5_file_t) :: f
     character(len=256) :: prob, meth, path, arg, msg
-    real(wp) :: tau, tend, g, side
+    real(wp) :: tau, tend, g, side, exact
     real(wp), allocatable :: v(:), dv(:, :), psi0(:), eh(:, :), en(:, :), t(:), psi(:), &
                              allpsi(:, :, :, :), x(:)
     integer, allocatable :: n(:)
@@ -45,7 +46,7 @@ program fsym_itp_run
         call get_command_argument(6, arg)
         read (arg, *) ns
     end if
-    call setup(trim(prob), n, side, v, dv, psi0, g)
+    call fsym_itp_problem(trim(prob), n, side, v, dv, psi0, g, exact)
     d = size(n)
     msg = ''
     call p%init(n, [(side, j=1, d)], v, trim(meth), tau, st, msg, dv=dv, g=g, nstates=ns)
@@ -134,52 +135,5 @@ contains
         write (error_unit, '(a)') trim(text)
         stop 1
     end subroutine die
-
-    subroutine setup(name, n, side, v, dv, psi0, g)
-        character(len=*), intent(in) :: name
-        integer, allocatable, intent(out) :: n(:)
-        real(wp), intent(out) :: side, g
-        real(wp), allocatable, intent(out) :: v(:), dv(:, :), psi0(:)
-        real(wp) :: w(3), r(3), y
-        integer :: m, i, j, k, idx
-        g = 0.0_wp
-        select case (name)
-        case ('pt1d')
-            m = 256
-            n = [m]
-            side = 40.0_wp
-            allocate (v(m), dv(m, 1), psi0(m))
-            do i = 1, m
-                y = -0.5_wp * side + (i - 1) * side / m
-                v(i) = -6.0_wp / cosh(y)**2
-                dv(i, 1) = 12.0_wp * tanh(y) / cosh(y)**2
-                psi0(i) = exp(-y**2 / 8.0_wp)
-            end do
-        case default
-            m = 32
-            side = 12.0_wp
-            w = 1.0_wp
-            if (name == 'gp3d') then
-                m = 36
-                side = 10.0_wp
-                w = [1.0_wp, 1.5_wp, 2.0_wp]
-                g = 20.0_wp
-            end if
-            n = [m, m, m]
-            allocate (v(m**3), dv(m**3, 3), psi0(m**3))
-            idx = 0
-            do k = 1, m
-                do j = 1, m
-                    do i = 1, m
-                        idx = idx + 1
-                        r = -0.5_wp * side + ([i, j, k] - 1) * side / m
-                        v(idx) = 0.5_wp * sum((w * r)**2)
-                        dv(idx, :) = w**2 * r
-                        psi0(idx) = exp(-sum(r**2) / 3.4_wp)
-                    end do
-                end do
-            end do
-        end select
-    end subroutine setup
 
 end program fsym_itp_run
