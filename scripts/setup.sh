@@ -23,6 +23,9 @@ fsym_vendor=$(dirname "${BASH_SOURCE[0]}")/../../shared/vendor
 if [ -z "${FSYM_PFUNIT_SOURCE:-}" ] && [ ! -f "$fsym_vendor/pfunit-4.14.0-src.tar.gz" ]; then
     command -v git >/dev/null 2>&1 || missing+=(git)
 fi
+# issue 26: the optional imaginary-time library (itp/, built by the test command's release
+# tree) needs FFTW 3 with its Fortran 2003 interface (GPL-2+; the core library does not use it)
+[ -e /usr/include/fftw3.f03 ] && pkg-config --exists fftw3 2>/dev/null || missing+=(libfftw3-dev)
 # --- end of the test-suite block ---
 
 # ---- begin issue 14: OpenMPI, only when the MPI parts are built (FSYM_MPI=1; scripts/scale.sh

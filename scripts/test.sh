@@ -9,7 +9,8 @@
 #   build/test-release  -O3 -march=native -ffp-contract=off: every pFUnit test case again,
 #                       so that the bitwise comparisons (label `bitwise`) hold there too;
 #                       this tree builds the library with OpenMP and the MPI parts
-#                       (FSYM_OPENMP, FSYM_MPI): threads and 1, 2, 4 ranks bitwise = serial.
+#                       (FSYM_OPENMP, FSYM_MPI): threads and 1, 2, 4 ranks bitwise = serial;
+#                       and the optional imaginary-time library (FSYM_ITP, FFTW): test/itp.
 # It prints a summary per tree and ends with CTest's summary line
 # `100% tests passed, 0 tests failed out of N`; it exits non-zero when any test fails.
 # Arguments go to ctest, e.g. `scripts/test.sh -L bitwise` or `scripts/test.sh -R order`.
@@ -38,7 +39,7 @@ build_tree() {   # build_tree NAME BUILD_TYPE FLAGS CLIENTS [CMAKE OPTIONS...]
 }
 
 build_tree debug Debug "$debug_flags" ON
-build_tree release Release "$release_flags" OFF -DFSYM_OPENMP=ON -DFSYM_MPI=ON
+build_tree release Release "$release_flags" OFF -DFSYM_OPENMP=ON -DFSYM_MPI=ON -DFSYM_ITP=ON
 
 # one CTest over both trees
 mkdir -p build/test-all

@@ -1,0 +1,246 @@
+!> Benchmark of the imaginary-time propagator (issue 26): energy error against tau, FFTs and
+!> wall time per method, on problems with exact or converged answers:
+!>   ho3d  3-D isotropic harmonic oscillator, 32^3 points, box 12, E0 = 3/2 exactly;
+!>   pt1d  1-D Poeschl-Teller well, lambda = 3, 256 points, box 40, E0 = -9/2 exactly;
+!>   gp3d  3-D anisotropic Gross-Pitaevskii ground state, trap (1, 1.5, 2), g = 20, 36^3
+!>         points, box 10, against A5 at tau = 0.005 on the same grid (converged in tau; its
+!>         resolution is checked and printed).
+!> Every run starts from the same Gaussian and runs t = 16, long
+!> enough that the excited components are below 1e-12; the relative error of <H> is then the
+!> method's. Per method a sweep of tau (halving from tau0) until the error is below 1e-8; the
+!> FFTs and seconds to 1e-8 are interpolated log-log between the two sweep points around 1e-8
+!> (`--quick` stops a sweep whose next point would exceed 20000 FFTs in 3-D; the value is then
+!> extrapolated with the fitted order and a `#` line says so). Seconds per step come from a
+!> separate timing pass: blocks of steps of every method interleaved, `reps` repetitions, the
+!> minimum taken, the spread printed. Output, per problem and method:
+!>   itp problem=NAME method=M order=P ffts_to_1e-8=N seconds_to_1e-8=S
+!> and `#` lines with the sweep (tau, error, FFTs) and the timing spread.
+!> Usage: fsym_itp_bench [--quick] [problem ...]
+program fsym_itp_bench
+    use, intrinsic :: iso_fortran_env, only: int64, output_unit
+    use fsym_kinds, only: wp, ik
+    use fsym_itp, only: fsym_itp_t
+    use fsym_itp_problems, only: fsym_itp_problem
+    implicit none
+    integer, parameter :: nmeth = 7, maxpts = 14
+    character(len=8), parameter :: meths(nmeth) = [character(len=8) :: 'CN', 'Strang', 'A', &
+                                                    'C', 'A4', 'A5', 'A6']
+    character(len=8), parameter :: probs(3) = [character(len=8) :: 'ho3d', 'pt1d', 'gp3d']
+    logical :: quick, want(3)
+    integer :: i, nargs
+    character(len=64) :: arg
+
+    quick = .false.
+    want = .false.
+    nargs = command_argument_count()
+    do i = 1, nargs
+        call get_command_argument(i, arg)
+        if (arg == '--quick') then
+            quick = .true.
+        else if (any(probs == arg)) then
+            want(findloc(probs, arg, dim=1)) = .true.
+        else
+            write (output_unit, '(a)') 'usage: fsym_itp_bench [--quick] [ho3d|pt1d|gp3d ...]'
+            stop 2
+        end if
+    end do
+    if (.not. any(want)) want = .true.
+    do i = 1, 3
+        if (want(i)) call problem(trim(probs(i)))
+    end do
+
+contains
+
+    subroutine setup(name, n, box, v, dv, psi0, g, exact, tend)
+        character(len=*), intent(in) :: name
+        integer, allocatable, intent(out) :: n(:)
+        real(wp), allocatable, intent(out) :: box(:), v(:), dv(:, :), psi0(:)
+        real(wp), intent(out) :: g, exact, tend
+        real(wp) :: side
+        call fsym_itp_problem(name, n, side, v, dv, psi0, g, exact)
+        box = spread(side, 1, size(n))
+        tend = 16.0_wp
+    end subroutine setup
+
+    !> Relative <H> error after t = tend at step tau; FFTs done.
+    subroutine one_run(name, meth, tau, err, nfft, ok)
+        character(len=*), intent(in) :: name, meth
+        real(wp), intent(in) :: tau
+        real(wp), intent(out) :: err
+        integer(ik), intent(out) :: nfft
+        logical, intent(out) :: ok
+        type(fsym_itp_t) :: p
+        integer, allocatable :: n(:)
+        real(wp), allocatable :: box(:), v(:), dv(:, :), psi0(:)
+        real(wp) :: g, exact, tend
+        integer :: st
+        character(len=256) :: msg
+        call setup(name, n, box, v, dv, psi0, g, exact, tend)
+        if (name == 'gp3d') exact = reference_gp()
+        msg = ''
+        call p%init(n, box, v, meth, tau, st, msg, dv=dv, g=g)
+        ok = st == 0
+        if (.not. ok) then
+            write (output_unit, '(5a)') '# problem=', name, ' method=', meth, ': '//trim(msg)
+            return
+        end if
+        call p%set_state(1, psi0)
+        call p%run(nint(tend / tau), st, msg, check=.false.)
+        ok = st == 0
+        if (.not. ok) then
+            write (output_unit, '(5a)') '# problem=', name, ' method=', meth, ': '//trim(msg)
+            return
+        end if
+        nfft = p%grid%nfft
+        err = abs(p%energy(1) - exact) / abs(exact)
+        call p%destroy()
+    end subroutine one_run
+
+    !> The Gross-Pitaevskii energy of gp3d converged in tau (A5, tau = 0.005), computed once.
+    real(wp) function reference_gp() result(e)
+        real(wp), save :: cached = 0.0_wp
+        logical, save :: done = .false.
+        type(fsym_itp_t) :: p
+        integer, allocatable :: n(:)
+        real(wp), allocatable :: box(:), v(:), dv(:, :), psi0(:)
+        real(wp) :: g, exact, tend
+        integer :: st
+        character(len=256) :: msg
+        if (.not. done) then
+            call setup('gp3d', n, box, v, dv, psi0, g, exact, tend)
+            call p%init(n, box, v, 'A5', 0.005_wp, st, msg, dv=dv, g=g)
+            call p%set_state(1, psi0)
+            call p%run(nint(tend / 0.005_wp), st, msg, check=.false.)
+            cached = p%energy(1)
+            call p%resolved(1, st, msg)
+            if (st /= 0) write (output_unit, '(2a)') '# gp3d reference: ', trim(msg)
+            write (output_unit, '(a,es24.16,a)') '# gp3d reference energy (A5, tau = 0.005) ', &
+                cached, trim(merge(' (resolved) ', ' (see above)', st == 0))
+            done = .true.
+            call p%destroy()
+        end if
+        e = cached
+    end function reference_gp
+
+    !> Seconds per step of each method (min over interleaved repetitions) and the spread.
+    subroutine timing(name, tpp, spread)
+        character(len=*), intent(in) :: name
+        real(wp), intent(out) :: tpp(nmeth), spread(nmeth)
+        type(fsym_itp_t) :: p(nmeth)
+        integer, allocatable :: n(:)
+        real(wp), allocatable :: box(:), v(:), dv(:, :), psi0(:)
+        real(wp) :: g, exact, tend, tmin(nmeth), tmax(nmeth), t
+        integer :: st, m, r, nblock, reps
+        integer(int64) :: c0, c1, rate
+        logical :: ok(nmeth)
+        call setup(name, n, box, v, dv, psi0, g, exact, tend)
+        nblock = 20
+        reps = 7
+        if (size(n) == 1) nblock = 400
+        do m = 1, nmeth
+            call p(m)%init(n, box, v, trim(meths(m)), 0.1_wp, st, dv=dv, g=g)
+            ok(m) = st == 0
+            if (ok(m)) call p(m)%set_state(1, psi0)
+        end do
+        tmin = huge(1.0_wp)
+        tmax = 0.0_wp
+        do r = 1, reps
+            do m = 1, nmeth
+                if (.not. ok(m)) cycle
+                call system_clock(c0, rate)
+                call p(m)%run(nblock, st, check=.false.)
+                call system_clock(c1)
+                t = real(c1 - c0, wp) / real(rate, wp) / nblock
+                tmin(m) = min(tmin(m), t)
+                tmax(m) = max(tmax(m), t)
+            end do
+        end do
+        tpp = tmin
+        spread = (tmax - tmin) / tmin
+        do m = 1, nmeth
+            call p(m)%destroy()
+        end do
+    end subroutine timing
+
+    subroutine problem(name)
+        character(len=*), intent(in) :: name
+        real(wp) :: taus(maxpts), errs(maxpts), tpp(nmeth), spread(nmeth), tau, order, f
+        real(wp) :: lt, x(maxpts), y(maxpts), steps
+        integer(ik) :: nffts(maxpts), budget
+        integer :: m, k, np, i, nfit, fps
+        logical :: ok, extrap
+        type(fsym_itp_t) :: probe
+        integer, allocatable :: n(:)
+        real(wp), allocatable :: box(:), v(:), dv(:, :), psi0(:)
+        real(wp) :: g, exact, tend
+        integer :: st
+
+        call setup(name, n, box, v, dv, psi0, g, exact, tend)
+        call timing(name, tpp, spread)
+        budget = 20000_ik   ! FFTs of one run
+        if (size(n) == 1) budget = 1000000_ik
+        if (.not. quick) budget = 20 * budget
+        do m = 1, nmeth
+            tau = 1.6_wp
+            if (meths(m) == 'Strang') tau = 0.4_wp
+            if (meths(m) == 'CN') tau = 0.05_wp
+            np = 0
+            extrap = .false.
+            do k = 1, maxpts
+                call one_run(name, trim(meths(m)), tau, errs(k), nffts(k), ok)
+                if (.not. ok) exit
+                np = k
+                taus(k) = tau
+                write (output_unit, '(5a,es10.3,a,es10.3,a,i0)') '# sweep problem=', name, &
+                    ' method=', trim(meths(m)), ' tau=', tau, ' rel_err=', errs(k), &
+                    ' ffts=', nffts(k)
+                if (errs(k) < 1.0e-13_wp) exit
+                if (errs(k) < 1.0e-8_wp .and. count(errs(1:k) < 1.0e-2_wp) >= 3) exit
+                if (2 * nffts(k) > budget) then   ! the next point would exceed the budget
+                    extrap = .true.
+                    exit
+                end if
+                tau = tau / 2
+            end do
+            if (np == 0) cycle
+            ! fitted order: points with 1e-13 < err < 1e-2
+            nfit = 0
+            do i = 1, np
+                if (errs(i) > 1.0e-13_wp .and. errs(i) < 1.0e-2_wp) then
+                    nfit = nfit + 1
+                    x(nfit) = log(taus(i))
+                    y(nfit) = log(errs(i))
+                end if
+            end do
+            order = 0.0_wp
+            if (nfit >= 2) order = sum((x(1:nfit) - sum(x(1:nfit)) / nfit) * &
+                                       (y(1:nfit) - sum(y(1:nfit)) / nfit)) / &
+                                   sum((x(1:nfit) - sum(x(1:nfit)) / nfit)**2)
+            call probe%init(n, box, v, trim(meths(m)), 0.1_wp, st, dv=dv, g=g)
+            fps = probe%fft_per_step
+            call probe%destroy()
+            ! tau at 1e-8: log-log interpolation between the bracketing points
+            k = findloc(errs(1:np) < 1.0e-8_wp, .true., dim=1)
+            if (k >= 2) then
+                f = (log(1.0e-8_wp) - log(errs(k - 1))) / (log(errs(k)) - log(errs(k - 1)))
+                lt = log(taus(k - 1)) + f * (log(taus(k)) - log(taus(k - 1)))
+            else if (np == 1 .and. errs(1) < 1.0e-8_wp) then
+                lt = log(taus(1)) + (log(1.0e-8_wp) - log(errs(1))) / max(order, 1.0_wp)
+                extrap = .true.
+            else
+                lt = log(taus(np)) + (log(1.0e-8_wp) - log(errs(np))) / max(order, 0.5_wp)
+                extrap = .true.
+            end if
+            steps = tend / exp(lt)
+            if (extrap) write (output_unit, '(5a)') '# problem=', name, ' method=', &
+                trim(meths(m)), ': value at 1e-8 extrapolated with the fitted order'
+            write (output_unit, '(5a,es9.2,a,i0)') '# timing problem=', name, ' method=', &
+                trim(meths(m)), ' spread=', spread(m), ' ffts_per_step=', fps
+            write (output_unit, '(5a,f0.2,a,i0,a,es10.3)') 'itp problem=', name, ' method=', &
+                trim(meths(m)), ' order=', order, ' ffts_to_1e-8=', nint(steps * fps, int64), &
+                ' seconds_to_1e-8=', steps * tpp(m)
+            flush (output_unit)
+        end do
+    end subroutine problem
+
+end program fsym_itp_bench

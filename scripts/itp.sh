@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Imaginary-time benchmark (issue 26): builds the optional library fsym_itp (FFTW 3, GPL-2+)
+# and its benchmark in build/itp-release (-O3 -march=native -ffp-contract=off) and runs it.
+#   bash scripts/itp.sh --quick        about two minutes: sweeps capped (20000 FFTs of a 3-D
+#                                      run), values beyond the cap extrapolated (a # line says so)
+#   bash scripts/itp.sh [problem ...]  full sweeps (ho3d pt1d gp3d)
+# Prints, per problem and method, `itp problem=NAME method=M order=P ffts_to_1e-8=N
+# seconds_to_1e-8=S` and # lines with the sweeps, timing spreads and the CPU (all kept in
+# build/itp-release/itp_bench.txt). When every problem ran, it then writes the GP ground state
+# (fsym_itp_run, method A, tau = 0.1) to build/itp-release/gp3d.h5 and, with h5py and
+# matplotlib, the figure doc/figures/itp.png (scripts/plot_itp.py): <H> error against FFTs
+# per method and problem, and the GP ground-state density.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export FSYM_PLOTS=1
+source scripts/setup.sh
+if ! [ -e /usr/include/fftw3.f03 ]; then
+    echo "[itp] FFTW 3 (libfftw3-dev) is missing: run bash scripts/setup.sh as root" >&2
+    exit 1
+fi
+dir=build/itp-release
+cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release -DFSYM_ITP=ON \
+    -DCMAKE_Fortran_FLAGS_RELEASE="-O3 -march=native -ffp-contract=off" > /dev/null
+cmake --build "$dir" --target fsym_itp_bench fsym_itp_run -j 2 > /dev/null
+out=$dir/itp_bench.txt
+{
+    echo "# cpu: $(awk -F': ' '/model name/{print $2; exit}' /proc/cpuinfo), $(nproc) cores"
+    "$dir/itp/fsym_itp_bench" "$@"
+} | tee "$out"
+for a in "$@"; do
+    case "$a" in --quick) ;; *) exit 0 ;; esac   # a subset of problems: no figure
+done
+"$dir/itp/fsym_itp_run" gp3d A 0.1 16 "$dir/gp3d.h5"
+if "$FSYM_PYTHON" -c 'import h5py, matplotlib' > /dev/null 2>&1; then
+    "$FSYM_PYTHON" scripts/plot_itp.py "$out" "$dir/gp3d.h5" doc/figures/itp.png
+else
+    echo "[itp] no h5py/matplotlib: figure not made" >&2
+fi
