@@ -66,6 +66,24 @@ int fsym_create(const char *method, int d, int n, fsym_accel_fn accel, fsym_grad
  * FSYM_ERR_BAD_ARGUMENT; NULL handle: FSYM_ERR_NOT_INITIALIZED. */
 int fsym_step(fsym_integrator *handle, double *q, double *v, double h, int nstep);
 
+/* Observer: called with the state (double[n][d]), the time and the step count since
+ * creation; a non-zero return stops the run there (the call then returns success). */
+typedef int (*fsym_observe_fn)(int d, int n, const double *q, const double *v, double t,
+                               long long step, void *user);
+
+/* Whole steps of h from the integrator's time towards t_end, then one shorter step that
+ * lands on t_end exactly; h must point from the time to t_end (else FSYM_ERR_BAD_STEP).
+ * On failure q, v hold the state after the last completed step. */
+int fsym_run_to(fsym_integrator *handle, double *q, double *v, double h, double t_end);
+
+/* The integrator's time (t0 + the steps taken, without accumulated round-off). */
+int fsym_time(const fsym_integrator *handle, double *t);
+
+/* From now on fsym_step and fsym_run_to call observe every `every` (>= 1) steps;
+ * observe = NULL removes it. every < 1: FSYM_ERR_BAD_ARGUMENT. */
+int fsym_set_observer(fsym_integrator *handle, fsym_observe_fn observe, int every,
+                      void *user);
+
 /* Steps completed by the last fsym_step call (*last) and since creation (*total);
  * either pointer may be NULL. */
 int fsym_steps_done(const fsym_integrator *handle, long long *last, long long *total);

@@ -14,12 +14,14 @@ module fsym_capi
                            FSYM_ERR_NO_GRADIENT, FSYM_ERR_NOT_INITIALIZED, FSYM_ERR_CAPACITY
     use fsym_force, only: force_model_t
     use fsym_integrator, only: integrator_t
+    use fsym_stepper, only: observer_t
     implicit none
     private
 
     public :: fsym_c_create, fsym_c_step, fsym_c_counts, fsym_c_destroy, fsym_c_message
     public :: fsym_c_steps_done, fsym_c_last_message, fsym_c_reset_cache
     public :: fsym_c_checkpoint_length, fsym_c_checkpoint_save, fsym_c_checkpoint_load
+    public :: fsym_c_time, fsym_c_run_to, fsym_c_set_observer
 
     !> Longest method label read from C (longer ones are refused, never cut).
     integer, parameter, public :: FSYM_C_NAME_MAX = 256
@@ -35,6 +37,17 @@ module fsym_capi
             real(c_double), intent(out) :: a(*)
             type(c_ptr), value :: user
         end function c_accel_iface
+        !> C observer callback: `int observe(int d, int n, const double *q, const double *v,
+        !> double t, long long step, void *user)`; non-zero return = stop the run there.
+        integer(c_int) function c_observe_iface(d, n, q, v, t, step, user) bind(C)
+            import :: c_int, c_double, c_ptr, c_long_long
+            implicit none
+            integer(c_int), value :: d, n
+            real(c_double), intent(in) :: q(*), v(*)
+            real(c_double), value :: t
+            integer(c_long_long), value :: step
+            type(c_ptr), value :: user
+        end function c_observe_iface
         !> C gradient-term callback: `int grad(int d, int n, const double *q,
         !> const double *a, double *g, void *user)`; non-zero return = failure.
         integer(c_int) function c_grad_iface(d, n, q, a, g, user) bind(C)
@@ -58,10 +71,20 @@ module fsym_capi
         procedure :: has_gradient => c_model_has_gradient
     end type c_model_t
 
+    !> An observer calling a C function pointer with the caller's user data.
+    type, extends(observer_t) :: c_observer_t
+        type(c_funptr) :: f = c_null_funptr
+        type(c_ptr) :: user = c_null_ptr
+        integer :: every = 1
+    contains
+        procedure :: observe => c_observer_observe
+    end type c_observer_t
+
     !> What a C handle points to.
     type :: c_handle_t
         type(integrator_t) :: it
         type(c_model_t) :: model
+        type(c_observer_t) :: obs
         integer :: d = 0, n = 0
         integer(ik) :: last_done = 0          ! steps completed by the last fsym_step
         character(len=512) :: msg = ''        ! message of the last failing call
@@ -179,10 +202,101 @@ contains
         call c_f_pointer(v, vf, [p%d, p%n])
         before = p%it%steps()
         st = FSYM_SUCCESS
-        call p%it%run(p%model, qf, vf, real(h, wp), int(nstep), st, p%msg)
+        if (c_associated(p%obs%f)) then
+            call p%it%run(p%model, qf, vf, real(h, wp), int(nstep), st, p%msg, &
+                          observer=p%obs, every=p%obs%every)
+        else
+            call p%it%run(p%model, qf, vf, real(h, wp), int(nstep), st, p%msg)
+        end if
         p%last_done = p%it%steps() - before
         stat = int(st, c_int)
     end function fsym_c_step
+
+    !> `int fsym_run_to(fsym_integrator *handle, double *q, double *v, double h,
+    !> double t_end)`: whole steps of h from the integrator's time towards t_end, then one
+    !> shorter step that lands on it exactly (see `run_to`); h must point from the time to
+    !> t_end (else FSYM_ERR_BAD_STEP, with a message saying so). The observer, if set, is
+    !> called as in `fsym_step`.
+    integer(c_int) function fsym_c_run_to(handle, q, v, h, t_end) bind(C, name='fsym_run_to') &
+        result(stat)
+        type(c_ptr), value :: handle       !! integrator
+        type(c_ptr), value :: q, v         !! positions, velocities: double[n][d]
+        real(c_double), value :: h         !! step
+        real(c_double), value :: t_end     !! time to reach
+        type(c_handle_t), pointer :: p
+        real(wp), pointer, contiguous :: qf(:, :), vf(:, :)
+        integer(ik) :: before
+        integer :: st
+        if (.not. c_associated(handle)) then
+            stat = FSYM_ERR_NOT_INITIALIZED; return
+        end if
+        call c_f_pointer(handle, p)
+        p%last_done = 0
+        if (.not. (c_associated(q) .and. c_associated(v))) then
+            p%msg = 'fsym_run_to: q and v must not be NULL'
+            stat = FSYM_ERR_BAD_ARGUMENT; return
+        end if
+        call c_f_pointer(q, qf, [p%d, p%n])
+        call c_f_pointer(v, vf, [p%d, p%n])
+        before = p%it%steps()
+        st = FSYM_SUCCESS
+        if (c_associated(p%obs%f)) then
+            call p%it%run_to(p%model, qf, vf, real(h, wp), real(t_end, wp), st, p%msg, &
+                             observer=p%obs, every=p%obs%every)
+        else
+            call p%it%run_to(p%model, qf, vf, real(h, wp), real(t_end, wp), st, p%msg)
+        end if
+        p%last_done = p%it%steps() - before
+        stat = int(st, c_int)
+    end function fsym_c_run_to
+
+    !> `int fsym_time(const fsym_integrator *handle, double *t)`: the integrator's time.
+    integer(c_int) function fsym_c_time(handle, t) bind(C, name='fsym_time') result(stat)
+        type(c_ptr), value :: handle          !! integrator
+        type(c_ptr), value :: t               !! double *: receives the time
+        type(c_handle_t), pointer :: p
+        real(c_double), pointer :: x
+        stat = FSYM_ERR_NOT_INITIALIZED
+        if (.not. c_associated(handle)) return
+        stat = FSYM_ERR_BAD_ARGUMENT
+        if (.not. c_associated(t)) return
+        call c_f_pointer(handle, p)
+        call c_f_pointer(t, x)
+        x = real(p%it%time(), c_double)
+        stat = FSYM_SUCCESS
+    end function fsym_c_time
+
+    !> `int fsym_set_observer(fsym_integrator *handle, fsym_observe_fn observe, int every,
+    !> void *user)`: from now on `fsym_step` and `fsym_run_to` call `observe` after every
+    !> `every` steps (every >= 1) with the state, the time and the step count; a non-zero
+    !> return stops the run there (the call then returns success). NULL `observe` removes it.
+    integer(c_int) function fsym_c_set_observer(handle, observe, every, user) &
+        bind(C, name='fsym_set_observer') result(stat)
+        type(c_ptr), value :: handle          !! integrator
+        type(c_funptr), value :: observe      !! observer callback or NULL
+        integer(c_int), value :: every        !! interval in steps (>= 1)
+        type(c_ptr), value :: user            !! passed to the callback
+        type(c_handle_t), pointer :: p
+        stat = FSYM_ERR_NOT_INITIALIZED
+        if (.not. c_associated(handle)) return
+        call c_f_pointer(handle, p)
+        stat = FSYM_ERR_BAD_ARGUMENT
+        if (every < 1) return
+        p%obs%f = observe; p%obs%user = user; p%obs%every = int(every)
+        stat = FSYM_SUCCESS
+    end function fsym_c_set_observer
+
+    subroutine c_observer_observe(self, q, v, t, step, stop)
+        class(c_observer_t), intent(inout) :: self
+        real(wp), intent(in), contiguous :: q(:, :), v(:, :)
+        real(wp), intent(in) :: t
+        integer(ik), intent(in) :: step
+        logical, intent(inout) :: stop
+        procedure(c_observe_iface), pointer :: f
+        call c_f_procpointer(self%f, f)
+        stop = f(int(size(q, 1), c_int), int(size(q, 2), c_int), q, v, real(t, c_double), &
+                 int(step, c_long_long), self%user) /= 0
+    end subroutine c_observer_observe
 
     !> `int fsym_steps_done(const fsym_integrator *handle, long long *last,
     !> long long *total)`: steps completed by the last `fsym_step` call and since creation
