@@ -27,6 +27,10 @@ module fsym_force
             !! the flow of the other part of H over dt (default: free flight q <- q + dt v)
         procedure :: has_drift => force_has_free_drift
             !! whether `drift` is overridden (the kernel does free flight itself otherwise)
+        procedure :: set_time => force_ignore_time
+            !! told the time of the stage before each evaluation (a time-dependent force)
+        procedure :: has_time => force_has_no_time
+            !! whether `set_time` is overridden (default: no, the force does not depend on t)
         procedure :: local_frequency => force_no_frequency
             !! largest local frequency squared, for the step-size guard (optional)
         procedure :: has_frequency => force_has_no_frequency
@@ -117,6 +121,23 @@ contains
         class(force_model_t), intent(in) :: self  !! the model
         force_has_free_drift = .false.
     end function force_has_free_drift
+
+    !> Default `set_time`: the force does not depend on time. A model whose force does (a
+    !> driven oscillator, a rotating potential) overrides it and `has_time`: before every
+    !> evaluation of a kick stage the kernel calls `set_time(t)` with the stage's time
+    !> (the step's start plus the drift weights before the stage, times h), and the model
+    !> keeps t for its `acceleration` and `gradient`. Existing models need no change.
+    subroutine force_ignore_time(self, t)
+        class(force_model_t), intent(inout) :: self  !! the model
+        real(wp), intent(in) :: t                     !! time of the next evaluation
+        if (t /= t) return
+    end subroutine force_ignore_time
+
+    !> Whether `set_time` is overridden (default: no).
+    logical function force_has_no_time(self)
+        class(force_model_t), intent(in) :: self  !! the model
+        force_has_no_time = .false.
+    end function force_has_no_time
 
     !> Whether `potential` is provided (default: no).
     logical function force_has_no_potential(self)

@@ -9,7 +9,7 @@ module fsym_integrator
     use fsym_force, only: force_model_t, recorder_t
     use fsym_stepper, only: stepper_t, observer_t
     use fsym_kernel, only: kernel_state_t, fsym_kernel_layout, fsym_kernel_run, &
-                           fsym_kernel_invalidate, fsym_kernel_undo, fsym_kernel_slots, &
+                           fsym_kernel_invalidate, fsym_kernel_abort, fsym_kernel_slots, &
                            fsym_kernel_counts, fsym_kernel_stage
     use fsym_text, only: fsym_text_put, fsym_text_put_int
     use fsym_guard, only: guard_t, fsym_guard_setup, fsym_guard_check, fsym_guard_message
@@ -263,7 +263,8 @@ contains
             call watched_run(self, model, q, v, h, nsteps, ndone, st, recorder)
         else
             call fsym_kernel_run(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, model, &
-                                 self%ks, q, v, self%w(self%w0), h, nsteps, ndone, st)
+                                 self%ks, q, v, self%w(self%w0), h, nsteps, ndone, st, &
+                                 t0=self%time())
         end if
         call fsym_kernel_counts(self%ks, nf, ng)
         call self%account(nf, ng, h, ndone)
@@ -309,7 +310,7 @@ contains
         else
             call fsym_kernel_run(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, model, &
                                  self%ks, q, v, self%w(self%w0), h, nsteps, ndone, st, recorder, &
-                                 self%steps())
+                                 self%steps(), t0=self%time())
         end if
     end subroutine watched_run
 
@@ -332,11 +333,11 @@ contains
             if (st /= FSYM_SUCCESS) exit
             call fsym_kernel_run(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, model, &
                                  self%ks, q, v, self%w(self%w0), h, 1_ik, nd, st, recorder, &
-                                 step0 + ndone)
+                                 step0 + ndone, t0=self%time() + real(ndone, wp) * h)
             if (st /= FSYM_SUCCESS) return
             call fsym_guard_check(self%guard, model, q, h, st)
             if (st /= FSYM_SUCCESS) then
-                call fsym_kernel_undo(self%ks, q, v, self%w(self%w0))   ! the step just taken
+                call fsym_kernel_abort(self%ks, q, v, self%w(self%w0), completed=.true.)
                 exit
             end if
             ndone = ndone + nd

@@ -26,7 +26,7 @@ module fsym_kernel
     implicit none
     private
 
-    public :: fsym_kernel_layout, fsym_kernel_run, fsym_kernel_abort, fsym_kernel_undo
+    public :: fsym_kernel_layout, fsym_kernel_run, fsym_kernel_abort
     public :: fsym_kernel_invalidate, fsym_kernel_slots, fsym_kernel_counts
     public :: fsym_kernel_stage, fsym_kernel_request
     public :: fsym_kernel_pack, fsym_kernel_unpack, fsym_kernel_point_slots, fsym_all_finite
@@ -92,9 +92,11 @@ contains
     !> Take up to `nsteps` steps of size h (or resume a suspended step and go on); `ndone`
     !> are complete. On failure `stat` is an `FSYM_ERR_*` code, q and v the state after
     !> `ndone` steps, `fsym_kernel_stage` the failing stage. `stat = KERNEL_SUSPEND`: suspended
-    !> (`ask` only). `step0`: steps before this call, for the recorder.
+    !> (`ask` only). `step0`: steps before this call, for the recorder. `t0`: the time of this
+    !> call's first step, for a model with `has_time()`: before each evaluation it is told the
+    !> stage's time t0 + (steps done + drift weights so far) h.
     subroutine fsym_kernel_run(nop, op, c, u, model, ks, q, v, w, h, nsteps, ndone, stat, &
-                               recorder, step0, ask)
+                               recorder, step0, ask, t0)
         integer, intent(in) :: nop                               !! number of stages
         integer, intent(in) :: op(nop)                           !! op codes of the stages
         real(wp), intent(in) :: c(nop), u(nop)                   !! stage coefficients
@@ -110,11 +112,12 @@ contains
         integer(ik), intent(in), optional :: step0               !! steps before this call
         logical, intent(in), optional :: ask
             !! reverse communication: suspend at every evaluation instead of calling the model
+        real(wp), intent(in), optional :: t0                     !! time of the first step
         real(wp), pointer, contiguous :: a(:, :), g(:, :), x(:, :)
         integer(ik) :: i, s0
         integer :: k, m, iy, iyf, mst
-        real(wp) :: hs, shift
-        logical :: qok, vok, vwas, fresh, fa, resumed, two, rec, rc, flow, moved
+        real(wp) :: hs, shift, tau
+        logical :: qok, vok, vwas, fresh, fa, resumed, two, rec, rc, flow, moved, timed
 
         ndone = 0; stat = FSYM_SUCCESS; m = ks%d * ks%n; s0 = 0; rc = .false.
         if (present(step0)) s0 = step0
@@ -132,7 +135,8 @@ contains
             end if
             if (moved) call fsym_kernel_invalidate(ks)
         end if
-        flow = model%has_drift()
+        flow = model%has_drift(); timed = .false.
+        if (present(t0)) timed = model%has_time()
         hs = h
         steps: do i = 1, max(nsteps, 1_ik)
             qok = .true.; vok = .true.; resumed = ks%active
@@ -149,9 +153,12 @@ contains
                 end if
                 ks%h = hs; ks%pc = 1
             end if
+            tau = real(ndone, wp) + sum(c(1:ks%pc - 1), mask=op(1:ks%pc - 1) == OP_DRIFT)
             do k = ks%pc, nop
                 ks%pc = k
+                if (timed .and. op(k) /= OP_DRIFT) call model%set_time(t0 + tau * hs)
                 if (op(k) == OP_DRIFT) then
+                    tau = tau + c(k)
                     if (flow) then
                         if (.not. drifted(c(k) * hs)) return
                     else
@@ -341,12 +348,16 @@ contains
 
     end subroutine fsym_kernel_run
 
-    !> Undo a suspended step: restore q, v (and the compensation terms) as at its start
-    !> (each saved by the step's first update of it); the cache is forgotten.
-    subroutine fsym_kernel_abort(ks, q, v, w)
+    !> Undo a suspended step, or with `completed` the step just completed by a one-step call
+    !> (a step-size guard that finds its end beyond the limit): q, v (and the compensation
+    !> terms) as at its start, each saved by the step's first update of it; the cache is
+    !> forgotten, the counters keep the evaluations made.
+    subroutine fsym_kernel_abort(ks, q, v, w, completed)
         type(kernel_state_t), intent(inout) :: ks                !! kernel state
         real(wp), intent(inout) :: q(ks%d, ks%n), v(ks%d, ks%n)  !! state, restored
         real(wp), intent(inout) :: w(ks%d, ks%n, ks%nslot)       !! work array
+        logical, intent(in), optional :: completed               !! undo the completed step
+        if (present(completed)) ks%active = ks%active .or. completed
         if (ks%active) then
             if (ks%qsaved) q = w(:, :, ks%iq0)
             if (ks%vsaved) v = w(:, :, ks%iv0)
@@ -357,18 +368,6 @@ contains
         call fsym_kernel_invalidate(ks)
         ks%active = .false.; ks%req = REQ_NONE
     end subroutine fsym_kernel_abort
-
-    !> Undo the step just completed by a call of one step (a step-size guard that finds its
-    !> end beyond the limit): q, v as at its start, the cache forgotten. The counters keep
-    !> the evaluations made.
-    subroutine fsym_kernel_undo(ks, q, v, w)
-        type(kernel_state_t), intent(inout) :: ks                !! kernel state
-        real(wp), intent(inout) :: q(ks%d, ks%n), v(ks%d, ks%n)  !! state, restored
-        real(wp), intent(inout) :: w(ks%d, ks%n, ks%nslot)       !! work array
-        ks%active = .true.
-        call fsym_kernel_abort(ks, q, v, w)
-        ks%pc = 0
-    end subroutine fsym_kernel_undo
 
     !> Forget every cached force (after changing the model's parameters between steps).
     pure subroutine fsym_kernel_invalidate(ks)
