@@ -185,6 +185,16 @@ contains
         type(c_ptr), value :: q, v         !! positions, velocities: double[n][d]
         real(c_double), value :: h         !! step
         integer(c_int), value :: nstep     !! number of steps
+        stat = c_run(handle, q, v, h, int(nstep), 0.0_wp, .false.)
+    end function fsym_c_step
+
+    !> `fsym_step` (`to` false: `nstep` steps) and `fsym_run_to` (`to`: up to `t_end`).
+    integer(c_int) function c_run(handle, q, v, h, nstep, t_end, to) result(stat)
+        type(c_ptr), intent(in) :: handle, q, v
+        real(c_double), intent(in) :: h
+        integer, intent(in) :: nstep
+        real(wp), intent(in) :: t_end
+        logical, intent(in) :: to
         type(c_handle_t), pointer :: p
         real(wp), pointer, contiguous :: qf(:, :), vf(:, :)
         integer(ik) :: before
@@ -194,23 +204,28 @@ contains
         end if
         call c_f_pointer(handle, p)
         p%last_done = 0
-        if (.not. (c_associated(q) .and. c_associated(v)) .or. nstep < 1) then
-            p%msg = 'fsym_step: q and v must not be NULL and nstep must be >= 1'
+        if (.not. (c_associated(q) .and. c_associated(v)) .or. (nstep < 1 .and. .not. to)) then
+            p%msg = 'fsym_step, fsym_run_to: q and v must not be NULL, nstep must be >= 1'
             stat = FSYM_ERR_BAD_ARGUMENT; return
         end if
         call c_f_pointer(q, qf, [p%d, p%n])
         call c_f_pointer(v, vf, [p%d, p%n])
         before = p%it%steps()
         st = FSYM_SUCCESS
-        if (c_associated(p%obs%f)) then
-            call p%it%run(p%model, qf, vf, real(h, wp), int(nstep), st, p%msg, &
-                          observer=p%obs, every=p%obs%every)
+        if (to .and. c_associated(p%obs%f)) then
+            call p%it%run_to(p%model, qf, vf, real(h, wp), t_end, st, p%msg, &
+                             observer=p%obs, every=p%obs%every)
+        else if (to) then
+            call p%it%run_to(p%model, qf, vf, real(h, wp), t_end, st, p%msg)
+        else if (c_associated(p%obs%f)) then
+            call p%it%run(p%model, qf, vf, real(h, wp), nstep, st, p%msg, observer=p%obs, &
+                          every=p%obs%every)
         else
-            call p%it%run(p%model, qf, vf, real(h, wp), int(nstep), st, p%msg)
+            call p%it%run(p%model, qf, vf, real(h, wp), nstep, st, p%msg)
         end if
         p%last_done = p%it%steps() - before
         stat = int(st, c_int)
-    end function fsym_c_step
+    end function c_run
 
     !> `int fsym_run_to(fsym_integrator *handle, double *q, double *v, double h,
     !> double t_end)`: whole steps of h from the integrator's time towards t_end, then one
@@ -223,31 +238,7 @@ contains
         type(c_ptr), value :: q, v         !! positions, velocities: double[n][d]
         real(c_double), value :: h         !! step
         real(c_double), value :: t_end     !! time to reach
-        type(c_handle_t), pointer :: p
-        real(wp), pointer, contiguous :: qf(:, :), vf(:, :)
-        integer(ik) :: before
-        integer :: st
-        if (.not. c_associated(handle)) then
-            stat = FSYM_ERR_NOT_INITIALIZED; return
-        end if
-        call c_f_pointer(handle, p)
-        p%last_done = 0
-        if (.not. (c_associated(q) .and. c_associated(v))) then
-            p%msg = 'fsym_run_to: q and v must not be NULL'
-            stat = FSYM_ERR_BAD_ARGUMENT; return
-        end if
-        call c_f_pointer(q, qf, [p%d, p%n])
-        call c_f_pointer(v, vf, [p%d, p%n])
-        before = p%it%steps()
-        st = FSYM_SUCCESS
-        if (c_associated(p%obs%f)) then
-            call p%it%run_to(p%model, qf, vf, real(h, wp), real(t_end, wp), st, p%msg, &
-                             observer=p%obs, every=p%obs%every)
-        else
-            call p%it%run_to(p%model, qf, vf, real(h, wp), real(t_end, wp), st, p%msg)
-        end if
-        p%last_done = p%it%steps() - before
-        stat = int(st, c_int)
+        stat = c_run(handle, q, v, h, 0, real(t_end, wp), .true.)
     end function fsym_c_run_to
 
     !> `int fsym_time(const fsym_integrator *handle, double *t)`: the integrator's time.
