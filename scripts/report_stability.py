@@ -73,7 +73,7 @@ def main():
          "`scripts/plot_stability.py`); do not edit by hand -->", "",
          f"Every number on this page comes from `fsym-stability --periods {periods} --nmax "
          f"{nmax}` (run by `bash scripts/stability.sh`); the raw data are in `{h5}`. Closed "
-         "forms are checked by `fpm test -- stability`.", ""]
+         "forms are checked by `bash scripts/test.sh -R stability`.", ""]
     L += ["## 1. Linear stability from the coefficient table", "",
           "For V = omega^2 q^2/2 one step of a splitting scheme is a 2x2 map of (q, v/omega) "
           "with entries polynomial in x = h omega, built from the stage arrays of the scheme "
@@ -205,7 +205,7 @@ def main():
                  f"{fx(l_secs[i], 1)} |")
     L += ["", "![long](figures/stability_long.png)", ""]
     L += ["## 7. Bad input", "",
-          "`test/test_badinput.f90` (in the normal suite, `fpm test -- badinput`) feeds 400 "
+          "`test/test_badinput.pf` (in the suite, `bash scripts/test.sh -R badinput`) feeds 400 "
           "random cases (fixed seed) to every method: NaN/Inf in q or v, NaN/Inf/zero steps, "
           "r = 0, steps from 1e2 to 1e300 and 1e-310, model failures and NaN forces mid-step, "
           "mismatched shapes, bad names and dimensions. It asserts: never stat = 0 with a "
