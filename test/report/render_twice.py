@@ -22,7 +22,8 @@ PAGES = {  # option: (script, committed page, line that names the commit or None
     "--solar": ("report_solar.py", "doc/solar-system.md", "Git commit of the run"),
     "--workprec": ("report_workprec.py", "doc/work-precision.md",
                    "Git commit that made the numbers"),
-    "--stability": ("report_stability.py", "doc/stability.md", None),
+    "--stability": ("report_stability.py", "doc/stability.md",
+                    "Git commit that made the numbers"),
 }
 
 
