@@ -226,8 +226,12 @@ class Claims:
         self.add(key, section, claim, f"{what} = {g7(ratio)}{note}", rule_more(ratio, k),
                  f"> {g7(k * TIE)} ({k:g} x TIE); tie within [{g7(k / TIE)}, {g7(k * TIE)}]")
 
-    def verdict(self, key):
-        return next(r[4] for r in self.rows if r[0] == key)
+    def close(self, key, section, claim, s, a, b):
+        """'closely matches', 'nearly indistinguishable': the energy curves of a and b."""
+        dd = curve_difference(s.curve(a, "energy"), s.curve(b, "energy"))
+        self.add(key, section, claim, f"relative L2 difference of the energy curves over the "
+                 f"first period = {dd:.3g} (max heights {a}/{b} = {g7(s.E(a) / s.E(b))})",
+                 rule_at_most(dd, CLOSE), f"<= {CLOSE:g} (2 x the convergence criterion)")
 
 
 # The families whose backward step shrinks from left to right (the paper's section 3 and 4:
@@ -266,12 +270,7 @@ def build_claims(s, sc):
           f"within x{g7(TIE)} of 2")
     c.about("fr_a_energy", sec, "FR's energy spike ~10x that of A", s.E("FR") / s.E("A"), 10,
             "ratio")
-    dd = curve_difference(s.curve("A'", "energy"), s.curve("A", "energy"))
-    h = s.E("A'") / s.E("A")
-    c.add("a1_a_energy_curve", sec, "A' energy error closely matches A's",
-          f"relative L2 difference of the energy curves over the first period = {dd:.3g} "
-          f"(max heights A'/A = {g7(h)})",
-          rule_at_most(dd, CLOSE), f"<= {CLOSE:g} (2 x the convergence criterion)")
+    c.close("a1_a_energy_curve", sec, "A' energy error closely matches A's", s, "A'", "A")
     r = s.at("RKN", "pP", 5000) / s.at("RKN", "pP", 10000)
     c.add("rkn_prec_converges", sec, "RKN's precession coefficient converges like the "
           "symplectic ones", f"precession coeff. P/5000 over P/10000 = {g7(r)}",
@@ -375,12 +374,8 @@ def build_claims(s, sc):
             "A6's", s.P("BM") / s.P("A6"), 100, "ratio BM/A6")
     c.about("bm_c_prec", sec, "BM's precession error ~20x that of C", s.P("BM") / s.P("C"),
             20, "ratio BM/C")
-    dd = curve_difference(s.curve("A6'", "energy"), s.curve("A6", "energy"))
-    h = s.E("A6'") / s.E("A6")
-    c.add("a61_a6_energy_curve", sec, "A6' energy error nearly indistinguishable from A6's",
-          f"relative L2 difference of the energy curves over the first period = {dd:.3g} "
-          f"(max heights A6'/A6 = {g7(h)})",
-          rule_at_most(dd, CLOSE), f"<= {CLOSE:g} (2 x the convergence criterion)")
+    c.close("a61_a6_energy_curve", sec, "A6' energy error nearly indistinguishable from A6's",
+            s, "A6'", "A6")
     c.more("a61_a6_prec", sec, "A6' precession error much larger than A6's",
            s.P("A6'") / s.P("A6"), FACTOR, "ratio A6'/A6")
     c.more("a61_bm_prec", sec, "A6' precession error still smaller than BM's",
