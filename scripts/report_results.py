@@ -511,8 +511,9 @@ def render(s, claims):
           "about), with the measured numbers (eps = P/5000 unless stated). Energy heights are "
           "the max abs energy coefficient over one period, precession the abs coefficient at "
           "t = P; curves are the coefficients after every step of the first period. "
-          "Force-point distances are measured in the force-point figures (eps = P/400), from "
-          "each point to the exact orbit. The tolerances follow from the wording and from two "
+          "Force-point distances are measured in the force-point scenes (eps = P/400, both "
+          "steps of each scene; the figures back4f, back4f2 and back5f show the second step, "
+          "as the paper's do), from each point to the exact orbit. The tolerances follow from the wording and from two "
           "numbers:", "",
           f"- the convergence criterion above, C = {CONVERGED:g}: a coefficient is known to a "
           f"factor 1 + C, a ratio of two to TIE = (1 + C)^2 = {g7(TIE)};",
@@ -529,8 +530,8 @@ def render(s, claims):
           "the criterion C itself; 'lowest at x' on a scan needs the scan's minimiser nearer "
           "to x than to the other values the paper shows and the value at x within 1 + C of "
           "the least; 'reproduces' means equal to round-off. Evaluations count a force "
-          "gradient as one evaluation (the paper's count: A5 is four forces and one gradient, "
-          "'or five force evaluations using extrapolation'); to the same error a "
+          "gradient as one evaluation (the paper's count: AN uses N - 1 forces and one force "
+          "gradient, 'or N force evaluations using extrapolation'); to the same error a "
           "fourth-order method needs (error ratio)^(1/4) times the steps, so that ratio is "
           "known to TIE^(1/4). A general statement ('in all cases') holds when every case "
           "the paper shows holds, counter-cases included.", "",
