@@ -230,13 +230,16 @@ contains
     ! ---------------------------------------------------------------- coefficient runs
 
     !> Integrate `nsteps` steps of eps = P/nper from the paper's start state; return the
-    !> summary. With `f`, also write every step's state and coefficients in slabs.
-    subroutine coefficient_run(cx, s, nper, nsteps, res, f)
+    !> summary. With `f`, also write every step's state and coefficients in slabs; with
+    !> `curve`, return the energy (row 1) and precession (row 2) coefficients after each of
+    !> the first size(curve, 2) steps.
+    subroutine coefficient_run(cx, s, nper, nsteps, res, f, curve)
         type(study_t), intent(inout) :: cx
         class(stepper_t), intent(inout) :: s
         integer, intent(in) :: nper, nsteps
         type(summary_t), intent(out) :: res
         type(h5_file_t), intent(inout), optional :: f
+        real(wp), intent(out), optional :: curve(:, :)
         type(coefficient_tracker_t) :: tr
         real(wp) :: q(2, 1), v(2, 1), eps
         real(wp) :: bt(NSLAB), bq(2, 1, NSLAB), bv(2, 1, NSLAB), be(NSLAB), bp(NSLAB)
@@ -258,6 +261,9 @@ contains
             call s%step(cx%kep, q, v, eps, st, msg)
             call need(st, trim(res%name)//': '//msg)
             call tr%update(q(:, 1), v(:, 1))
+            if (present(curve)) then
+                if (j <= size(curve, 2)) curve(:, j) = [tr%energy, tr%precession]
+            end if
             if (j == nper) then
                 res%emax = tr%energy_max
                 res%pend = tr%precession
@@ -607,14 +613,17 @@ contains
     !> The numbers behind doc/results.md: every catalogue method and A7, A8, A7', A8',
     !> GFR5(0) and M2(t1*) (t1* the zero of M2's precession at t = P), each over two periods
     !> at eps = P/1000, P/2000, P/5000, P/10000: max |energy coefficient| over the first
-    !> period, energy and precession coefficients at t = P and t = 2P.
+    !> period, energy and precession coefficients at t = P and t = 2P, the evaluation counts
+    !> of each run, and the coefficient curves over the first period at eps = P/NPER. The
+    !> method attributes (eps, counts) are those of the eps = P/NPER run, the file's eps.
     subroutine scene_results(cx)
         type(study_t), intent(inout) :: cx
         character(len=FSYM_NAME_LEN), allocatable :: names(:)
         character(len=FSYM_NAME_LEN) :: label
         real(wp), allocatable :: t1(:), em(:), pm(:)
         real(wp) :: t1zero
-        real(wp) :: d(size(NLADDER), 5)
+        real(wp) :: d(size(NLADDER), 5), curve(2, NPER), nfe(size(NLADDER))
+        real(wp) :: nge(size(NLADDER))
         logical :: found
         type(h5_file_t) :: f
         type(summary_t) :: r
@@ -644,22 +653,38 @@ contains
                 else
                     call new_stepper(cx, label, s, 0.0_wp)
                 end if
-                call coefficient_run(cx, s, NLADDER(k), 2 * NLADDER(k), r)
+                g = 'summary/'//fsym_h5_safe_name(label)
+                if (NLADDER(k) == NPER) then
+                    call coefficient_run(cx, s, NLADDER(k), 2 * NLADDER(k), r, curve=curve)
+                    call method_attrs(f, g, s, cx%period / NPER)
+                else
+                    call coefficient_run(cx, s, NLADDER(k), 2 * NLADDER(k), r)
+                end if
                 d(k, :) = [r%emax, r%eend, r%pend, r%eend2, r%pend2]
+                nfe(k) = real(s%force_evaluations(), wp)
+                nge(k) = real(s%gradient_evaluations(), wp)
             end do
-            g = 'summary/'//fsym_h5_safe_name(label)
             call f%write(g//'/steps_per_period', real(NLADDER, wp), st, msg); call need(st, msg)
             call f%write(g//'/energy_max', d(:, 1), st, msg); call need(st, msg)
             call f%write(g//'/energy_at_P', d(:, 2), st, msg); call need(st, msg)
             call f%write(g//'/precession_at_P', d(:, 3), st, msg); call need(st, msg)
             call f%write(g//'/energy_at_2P', d(:, 4), st, msg); call need(st, msg)
             call f%write(g//'/precession_at_2P', d(:, 5), st, msg); call need(st, msg)
+            call f%write(g//'/force_evaluations', nfe, st, msg); call need(st, msg)
+            call f%write(g//'/gradient_evaluations', nge, st, msg); call need(st, msg)
+            call f%write(g//'/energy_curve', curve(1, :), st, msg); call need(st, msg)
+            call f%write(g//'/precession_curve', curve(2, :), st, msg); call need(st, msg)
+            call unit(f, g//'/energy_curve', 'T-4')
+            call unit(f, g//'/precession_curve', 'rad T-4')
+            call f%set_attr(g//'/energy_curve', 'eps', cx%period / NPER, st, msg)
+            call need(st, msg)
+            call f%set_attr(g//'/precession_curve', 'eps', cx%period / NPER, st, msg)
+            call need(st, msg)
             call unit(f, g//'/energy_max', 'T-4'); call unit(f, g//'/energy_at_P', 'T-4')
             call unit(f, g//'/energy_at_2P', 'T-4')
             call unit(f, g//'/precession_at_P', 'rad T-4')
             call unit(f, g//'/precession_at_2P', 'rad T-4')
             call f%set_attr(g, 'label', trim(label), st, msg); call need(st, msg)
-            call method_attrs(f, g, s, cx%period / NLADDER(size(NLADDER)))
         end do
         call f%close(st, msg); call need(st, msg)
         call study_say('  '//fsym_int_text(size(names))//' methods, M2 precession zero at t1 = '// &

@@ -1,12 +1,34 @@
 !> Timing helpers of the benchmark programs: elapsed seconds by `system_clock` with 64-bit
-!> counts, and the median of repeated measurements.
+!> counts, the CPU time of the calling thread (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)`,
+!> which does not count the time the thread waits while other jobs run on a shared machine),
+!> and the median of repeated measurements.
 module fsym_timing
     use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: iso_c_binding, only: c_int, c_long
     use fsym_kinds, only: wp
     implicit none
     private
 
-    public :: seconds_since, median, quantile
+    public :: seconds_since, thread_cpu_seconds, median, quantile
+
+    !> POSIX `struct timespec` (time_t and long are both C long on the 64-bit Linux targets).
+    type, bind(C) :: timespec_t
+        integer(c_long) :: sec = 0    !! whole seconds
+        integer(c_long) :: nsec = 0   !! nanoseconds
+    end type timespec_t
+
+    !> Linux's clock id of the calling thread's CPU-time clock.
+    integer(c_int), parameter :: CLOCK_THREAD_CPUTIME_ID = 3_c_int
+
+    interface
+        !> POSIX clock_gettime(2).
+        integer(c_int) function c_clock_gettime(clock_id, ts) bind(C, name='clock_gettime')
+            import :: c_int, timespec_t
+            implicit none
+            integer(c_int), value :: clock_id    !! the clock
+            type(timespec_t), intent(out) :: ts  !! its reading
+        end function c_clock_gettime
+    end interface
 
 contains
 
@@ -17,6 +39,17 @@ contains
         call system_clock(t1, rate)
         seconds_since = real(t1 - t0, wp) / real(rate, wp)
     end function seconds_since
+
+    !> CPU seconds used so far by the calling thread; a negative value when the clock cannot
+    !> be read (then time with `seconds_since`).
+    real(wp) function thread_cpu_seconds()
+        type(timespec_t) :: ts
+        if (c_clock_gettime(CLOCK_THREAD_CPUTIME_ID, ts) /= 0_c_int) then
+            thread_cpu_seconds = -1.0_wp
+        else
+            thread_cpu_seconds = real(ts%sec, wp) + 1.0e-9_wp * real(ts%nsec, wp)
+        end if
+    end function thread_cpu_seconds
 
     !> Median of the values (the mean of the middle two for an even count).
     pure real(wp) function median(x)

@@ -3,7 +3,11 @@
 !> (coarser and finer, by the same geometric factor) until every target error of its orbit is
 !> bracketed, so the time to each target is interpolated between two runs, never bounded.
 !> Timings are the minimum over interleaved repetitions (every run of an orbit once, then
-!> again, ...), with the median and maximum kept as the spread. Writes the HDF5 file read by
+!> again, ...), with the median and maximum kept as the spread, on two clocks: wall time and
+!> the CPU time of the thread (steadier on a shared machine); every sample is kept, so the
+!> report can compare the odd and the even rounds (two independent repetitions of the
+!> study). The cost of a gradient evaluation relative to a force evaluation is measured in
+!> repeated pairs; its spread over the pairs is kept. Writes the HDF5 file read by
 !> scripts/report_workprec.py (which renders doc/work-precision.md and the figures) and the
 !> CSV of every run (doc/work-precision.csv). Both outputs are checked writable before the
 !> work and written through temporary names.
@@ -18,7 +22,7 @@ program fsym_workprec
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use fsym
-    use fsym_timing, only: seconds_since, median
+    use fsym_timing, only: seconds_since, median, thread_cpu_seconds
     use fsym_h5, only: h5_file_t, fsym_check_writable, fsym_open_text, fsym_commit_text, &
                        fsym_h5_safe_name, fsym_h5md_header
     implicit none
@@ -40,12 +44,14 @@ program fsym_workprec
 
     character(len=FSYM_NAME_LEN), allocatable :: names(:)
     character(len=512) :: h5_path, csv_path, hardware, flags, arg, msg
-    real(wp) :: nmax = 20000.0_wp, ratio, gcost, t_all
-    integer :: nsweep = 12, nreps = 5, nm, io, im, ie, st, i, rep
+    integer, parameter :: NGPAIR = 9                  ! force/gradient timing pairs
+    real(wp) :: nmax = 20000.0_wp, ratio, gcost, gpair(NGPAIR), t_all
+    integer :: nsweep = 12, nreps = 6, nm, io, im, ie, st, i, rep
     integer, allocatable :: npt(:, :), ordm(:), inner(:, :, :)
     real(wp), allocatable :: nper(:, :, :), tmin(:, :, :), tmed(:, :, :), tmax(:, :, :)
     real(wp), allocatable :: de(:, :, :), prec(:, :, :), phase(:, :, :), nfe(:, :, :)
-    real(wp), allocatable :: nge(:, :, :), samples(:, :, :, :)
+    real(wp), allocatable :: nge(:, :, :), samples(:, :, :, :), csamples(:, :, :, :)
+    real(wp), allocatable :: cmin(:, :, :), cmed(:, :, :), cmax(:, :, :)
     logical, allocatable :: fwd(:)
     integer(int64) :: t0
 
@@ -78,12 +84,15 @@ program fsym_workprec
     nm = size(names)
     allocate (npt(nm, NORBIT), inner(MAXPT, nm, NORBIT), ordm(nm), fwd(nm))
     allocate (nper(MAXPT, nm, NORBIT), tmin(MAXPT, nm, NORBIT), samples(nreps, MAXPT, nm, NORBIT))
-    allocate (tmed, tmax, de, prec, phase, nfe, nge, mold=nper)
+    allocate (tmed, tmax, de, prec, phase, nfe, nge, cmin, cmed, cmax, mold=nper)
+    allocate (csamples, mold=samples)
     tmin = ieee_nan(); tmed = tmin; tmax = tmin; de = tmin; prec = tmin; phase = tmin
-    nfe = 0.0_wp; nge = 0.0_wp; inner = 1; samples = ieee_nan()
+    cmin = tmin; cmed = tmin; cmax = tmin
+    nfe = 0.0_wp; nge = 0.0_wp; inner = 1; samples = ieee_nan(); csamples = ieee_nan()
     call method_orders()
-    gcost = gradient_cost()
-    write (output_unit, '(a,f0.3)') 'gradient cost / force cost = ', gcost
+    call gradient_cost(gcost, gpair)
+    write (output_unit, '(a,f0.3,a,f0.3,a,f0.3,a)') 'gradient cost / force cost = ', gcost, &
+        ' (pairs: ', minval(gpair), ' .. ', maxval(gpair), ')'
     ratio = (nmax / NMIN)**(1.0_wp / real(nsweep - 1, wp))
 
     ! 1. the grids and the untimed diagnostics of every run
@@ -100,7 +109,8 @@ program fsym_workprec
         do rep = 1, nreps
             do im = 1, nm
                 do ie = 1, npt(im, io)
-                    samples(rep, ie, im, io) = timed_run(io, im, ie)
+                    call timed_run(io, im, ie, samples(rep, ie, im, io), &
+                                   csamples(rep, ie, im, io))
                 end do
             end do
         end do
@@ -109,6 +119,9 @@ program fsym_workprec
                 tmin(ie, im, io) = minval(samples(:, ie, im, io))
                 tmed(ie, im, io) = median(samples(:, ie, im, io))
                 tmax(ie, im, io) = maxval(samples(:, ie, im, io))
+                cmin(ie, im, io) = minval(csamples(:, ie, im, io))
+                cmed(ie, im, io) = median(csamples(:, ie, im, io))
+                cmax(ie, im, io) = maxval(csamples(:, ie, im, io))
             end do
         end do
         write (output_unit, '(a,f0.1,a)') 'orbit '//trim(ORBIT_NAME(io))//': timings done (', &
@@ -303,10 +316,12 @@ contains
         c = [a(2) * b(3) - a(3) * b(2), a(3) * b(1) - a(1) * b(3), a(1) * b(2) - a(2) * b(1)]
     end function cross
 
-    !> Seconds of one whole run (the integration alone, `stepper%run`); short runs are
-    !> repeated `inner` times within the sample (chosen on the first round) and divided.
-    real(wp) function timed_run(io, im, ie) result(t)
+    !> Seconds of one whole run (the integration alone, `stepper%run`), wall `t` and thread
+    !> CPU `tc`; short runs are repeated `inner` times within the sample (chosen on the first
+    !> round) and divided.
+    subroutine timed_run(io, im, ie, t, tc)
         integer, intent(in) :: io, im, ie
+        real(wp), intent(out) :: t, tc
         type(kepler_model_t) :: model
         class(stepper_t), allocatable :: s
         real(wp) :: q0(3), v0(3), period, h
@@ -314,10 +329,12 @@ contains
         integer(ik) :: nsteps
         integer(int64) :: t1
         integer :: d, r, st
+        real(wp) :: c1
         d = DIMS(io)
         call orbit(io, q0, v0, period)
         call run_size(io, nper(ie, im, io), nsteps, h)
         allocate (q(d, 1), v(d, 1))
+        c1 = thread_cpu_seconds()
         call system_clock(t1)
         do r = 1, inner(ie, im, io)
             call fsym_new_stepper(trim(names(im)), model, d, 1, s, st, msg)
@@ -325,43 +342,62 @@ contains
             call s%run(model, q, v, h, nsteps, st)
         end do
         t = seconds_since(t1) / inner(ie, im, io)
+        tc = (thread_cpu_seconds() - c1) / inner(ie, im, io)
+        if (c1 < 0.0_wp) tc = ieee_nan()
         if (samples(1, ie, im, io) /= samples(1, ie, im, io) .and. t * inner(ie, im, io) &
             < TMIN_RUN) then               ! first round: fix the inner repetitions
             inner(ie, im, io) = min(1000, ceiling(TMIN_RUN / max(t, 1.0e-7_wp)))
         end if
-    end function timed_run
+    end subroutine timed_run
 
     !> Measured cost of a gradient evaluation relative to a force evaluation (Kepler model,
-    !> one body, through the model's type-bound procedures; minimum of 7 interleaved pairs).
-    real(wp) function gradient_cost()
+    !> one body, through the model's type-bound procedures, thread CPU time): `cost` is the
+    !> ratio of the minima over NGPAIR interleaved pairs, `pair` the ratio within each pair.
+    subroutine gradient_cost(cost, pair)
+        real(wp), intent(out) :: cost, pair(NGPAIR)
         type(kepler_model_t) :: model
-        real(wp) :: q(2, 1), a(2, 1), g(2, 1), tf(7), tg(7), sink
+        real(wp) :: q(2, 1), a(2, 1), g(2, 1), tf(NGPAIR), tg(NGPAIR), sink, c1
         integer :: r, st
         integer(ik) :: k
         integer(int64) :: t1
         integer(ik), parameter :: nloop = 2000000_ik
         q(:, 1) = [0.7_wp, 0.3_wp]
         sink = 0.0_wp
-        do r = 1, 7
+        do r = 1, NGPAIR
             call system_clock(t1)
+            c1 = thread_cpu_seconds()
             do k = 1, nloop
                 st = 0
                 call model%acceleration(q, a, st)
                 q(1, 1) = q(1, 1) + 1.0e-18_wp * a(1, 1)
             end do
-            tf(r) = seconds_since(t1)
+            tf(r) = cpu_or_wall(c1, t1)
             call system_clock(t1)
+            c1 = thread_cpu_seconds()
             do k = 1, nloop
                 st = 0
                 call model%gradient(q, a, g, st)
                 q(1, 1) = q(1, 1) + 1.0e-18_wp * g(1, 1)
             end do
-            tg(r) = seconds_since(t1)
+            tg(r) = cpu_or_wall(c1, t1)
             sink = sink + g(1, 1)
         end do
         if (sink == 0.123_wp) write (output_unit, '(a)') '.'
-        gradient_cost = minval(tg) / minval(tf)
-    end function gradient_cost
+        cost = minval(tg) / minval(tf)
+        pair = tg / tf
+    end subroutine gradient_cost
+
+    !> Thread CPU seconds since the reading c1, or wall seconds since the count t1 when the
+    !> CPU clock cannot be read.
+    real(wp) function cpu_or_wall(c1, t1)
+        real(wp), intent(in) :: c1
+        integer(int64), intent(in) :: t1
+        if (c1 < 0.0_wp) then
+            cpu_or_wall = seconds_since(t1)
+        else
+            cpu_or_wall = thread_cpu_seconds() - c1
+        end if
+    end function cpu_or_wall
 
     !> Order of accuracy of every method (RKN: 4).
     subroutine method_orders()
@@ -381,15 +417,17 @@ contains
         call fsym_open_text(trim(csv_path), u, st, msg)
         if (st /= FSYM_SUCCESS) call die(msg)
         write (u, '(a)') 'orbit,d,method,forward,steps_per_period,time_min_s,time_median_s,'// &
-            'time_max_s,force_evals,grad_evals,max_rel_energy_error,precession_rad,phase_error'
+            'time_max_s,force_evals,grad_evals,max_rel_energy_error,precession_rad,'// &
+            'phase_error,cpu_min_s,cpu_median_s,cpu_max_s'
         do io = 1, NORBIT
             do im = 1, nm
                 do ie = 1, npt(im, io)
-                    write (u, '(i0,a,i0,a,a,a,l1,9(a,es12.5))') io, ',', DIMS(io), ',', &
+                    write (u, '(i0,a,i0,a,a,a,l1,12(a,es12.5))') io, ',', DIMS(io), ',', &
                         trim(names(im)), ',', fwd(im), ',', nper(ie, im, io), ',', &
                         tmin(ie, im, io), ',', tmed(ie, im, io), ',', tmax(ie, im, io), ',', &
                         nfe(ie, im, io), ',', nge(ie, im, io), ',', de(ie, im, io), ',', &
-                        prec(ie, im, io), ',', phase(ie, im, io)
+                        prec(ie, im, io), ',', phase(ie, im, io), ',', cmin(ie, im, io), ',', &
+                        cmed(ie, im, io), ',', cmax(ie, im, io)
                 end do
             end do
         end do
@@ -406,12 +444,16 @@ contains
         call f%create(trim(h5_path), st, msg)
         if (st /= FSYM_SUCCESS) call die(msg)
         call fsym_h5md_header(f, 'fsym-workprec', FSYM_VERSION, 'Kepler units: G M = 1, '// &
-                              'm = 1; run times in seconds of wall clock', st, msg)
+                              'm = 1; run times in seconds (wall clock, and CPU time of '// &
+                              'the thread)', st, msg)
         call h5ok(f)
         call f%set_attr('parameters', 'hardware', trim(hardware), st, msg); call h5ok(f)
         call f%set_attr('parameters', 'build_flags', trim(flags), st, msg); call h5ok(f)
         call f%set_attr('parameters', 'mu', 1.0_wp, st, msg); call h5ok(f)
         call f%set_attr('parameters', 'gradient_cost', gcost, st, msg); call h5ok(f)
+        call f%set_attr('parameters', 'gradient_cost_pairs', gpair, st, msg); call h5ok(f)
+        call f%set_attr('parameters', 'gradient_cost_clock', 'thread CPU time', st, msg)
+        call h5ok(f)
         call f%set_attr('parameters', 'repetitions', nreps, st, msg); call h5ok(f)
         call f%set_attr('parameters', 'total_seconds', t_all, st, msg); call h5ok(f)
         call f%set_attr('parameters', 'base_grid', [NMIN, nmax], st, msg); call h5ok(f)
@@ -435,6 +477,13 @@ contains
                 call f%write(g//'/time_median', tmed(1:n, im, io), st, msg); call h5ok(f)
                 call f%write(g//'/time_max', tmax(1:n, im, io), st, msg); call h5ok(f)
                 call f%write(g//'/inner_repeats', inner(1:n, im, io), st, msg); call h5ok(f)
+                call f%write(g//'/cpu_min', cmin(1:n, im, io), st, msg); call h5ok(f)
+                call f%write(g//'/cpu_median', cmed(1:n, im, io), st, msg); call h5ok(f)
+                call f%write(g//'/cpu_max', cmax(1:n, im, io), st, msg); call h5ok(f)
+                call f%write(g//'/time_samples', samples(:, 1:n, im, io), st, msg)
+                call h5ok(f)
+                call f%write(g//'/cpu_samples', csamples(:, 1:n, im, io), st, msg)
+                call h5ok(f)
                 call f%write(g//'/force_evals', nfe(1:n, im, io), st, msg); call h5ok(f)
                 call f%write(g//'/grad_evals', nge(1:n, im, io), st, msg); call h5ok(f)
                 call f%write(g//'/max_rel_energy_error', de(1:n, im, io), st, msg); call h5ok(f)
@@ -443,6 +492,11 @@ contains
                 call f%set_attr(g//'/time_min', 'unit', 's', st, msg); call h5ok(f)
                 call f%set_attr(g//'/time_median', 'unit', 's', st, msg); call h5ok(f)
                 call f%set_attr(g//'/time_max', 'unit', 's', st, msg); call h5ok(f)
+                call f%set_attr(g//'/cpu_min', 'unit', 's', st, msg); call h5ok(f)
+                call f%set_attr(g//'/cpu_median', 'unit', 's', st, msg); call h5ok(f)
+                call f%set_attr(g//'/cpu_max', 'unit', 's', st, msg); call h5ok(f)
+                call f%set_attr(g//'/time_samples', 'unit', 's', st, msg); call h5ok(f)
+                call f%set_attr(g//'/cpu_samples', 'unit', 's', st, msg); call h5ok(f)
                 call f%set_attr(g//'/precession_rad', 'unit', 'rad', st, msg); call h5ok(f)
             end do
         end do

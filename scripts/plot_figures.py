@@ -7,8 +7,13 @@ Every figure is written as PNG (for the markdown pages) and as vector PDF. Coeff
 scenes (engNf) give engNf (energy error coefficient against t/P) and angNf (precession error
 coefficient against t/P), each with a zoom on the first pericentre passage. Force-point
 scenes (backX) give backX: the force-evaluation points over the dashed exact orbit; forward
-methods as circles, non-forward methods as squares (first solid, then hollow), RKN as plus
-signs, gradient evaluations as crosses, the step ends as black dots. acoef, scanm2 and
+methods as circles (hollow, except A5 in back5f, solid as in the paper), non-forward methods
+as squares (first solid, then hollow), RKN as plus signs, gradient evaluations as crosses, the
+step ends as black dots. back4f, back4f2 and back5f show one step, from position 2 to the
+pericentre 3, as the paper's do, with the force points of the two non-forward methods
+numbered in the order they are evaluated (F1, F2, ... for the first, f1, f2, ... for the
+second), the names the paper's text uses; a force the step reuses from the end of the
+previous one (first same as last) is drawn and numbered as the step's first. acoef, scanm2 and
 scangfr5 give the GFR5 coefficients and the two parameter scans. Groups are found through
 their `label` attribute (the group names are safe forms of the labels).
 """
@@ -26,6 +31,8 @@ from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 COEF_SCENES = ["eng3f", "eng4f", "eng4f2", "eng5f", "eng6f"]
 POINT_SCENES = ["backfr", "back3f", "back4f", "back4f2", "back5f", "back6f"]
+ONE_STEP = {"back4f", "back4f2", "back5f"}  # the paper shows one step 2 -> 3 (and numbers it)
+SOLID_FORWARD = {"back5f": {"A5"}}          # "forward algorithm A5 (solid circles)"
 
 
 def text(x):
@@ -87,6 +94,22 @@ def coefficient_figures(f, scene, figdir):
         save(fig, figdir, prefix + scene[3:])
 
 
+def last_step(g, p):
+    """The force points of the last step of group g, with those of the previous step that
+    sit at the position the last step starts from (a first-same-as-last force it reuses; the
+    step's own force at its end is then the next step's first and left out); p: the
+    step-end positions. Returns positions and kinds."""
+    q = g["position"][()][:, 0, :]
+    kind, step = g["kind"][()], g["step"][()]
+    last = step == step.max()
+    at = [np.hypot(*(q - x).T) <= 1e-12 * np.hypot(*x) for x in (p[-2], p[-1])]
+    reuse = (step == step.max() - 1) & at[0]
+    keep = reuse | last
+    if np.any(reuse):  # then the force at the end is the next step's first: not this one's
+        keep &= ~(last & at[1])
+    return q[keep], kind[keep]
+
+
 def point_figure(f, scene, figdir):
     """backX.png: force-evaluation points over the exact orbit."""
     fig, ax = plt.subplots(figsize=(6.4, 6.4))
@@ -95,30 +118,49 @@ def point_figure(f, scene, figdir):
     nonfwd = 0
     pts = [qe[np.argmin(np.hypot(qe[:, 0], qe[:, 1]))][None, :]]
     colours = ["tab:red", "tab:blue", "tab:green", "tab:purple"]
+    one = scene in ONE_STEP
     for i, m in enumerate(methods(f)):
         g = group(f, "force_evaluations", m)
         par = group(f, "parameters", m).attrs
-        q = g["position"][()][:, 0, :]
-        kind = g["kind"][()]
+        p = group(f, "particles", m)["position/value"][()][:, 0, :]
+        if one:
+            q, kind = last_step(g, p)
+            p = p[-2:]
+        else:
+            q = g["position"][()][:, 0, :]
+            kind = g["kind"][()]
         col = colours[i % len(colours)]
+        prefix = None
         if text(par["method"]) == "RKN":
             style = dict(marker="+", s=120, color=col, linewidths=1.6)
         elif int(par["forward"]) == 1:
-            style = dict(marker="o", s=70, facecolors="none", edgecolors=col, linewidths=1.4)
+            face = col if m in SOLID_FORWARD.get(scene, ()) else "none"
+            style = dict(marker="o", s=70, facecolors=face, edgecolors=col, linewidths=1.4)
         else:
             face = col if nonfwd == 0 else "none"
             style = dict(marker="s", s=60, facecolors=face, edgecolors=col, linewidths=1.4)
+            prefix = "F" if nonfwd == 0 else "f"
             nonfwd += 1
         sel = kind != 2  # gradients sit where a force was evaluated: mark them separately
-        ax.scatter(q[sel, 0], q[sel, 1], label=f"{m} force points", zorder=3, **style)
+        ax.scatter(q[sel, 0], q[sel, 1], label=f"{m} force points"
+                   + (f" ({prefix}1, {prefix}2, ...)" if one and prefix else ""), zorder=3,
+                   **style)
+        if one and prefix:
+            for k, qk in enumerate(q[sel]):
+                ax.annotate(f"{prefix}{k + 1}", qk, textcoords="offset points",
+                            xytext=(7, 5 if prefix == "F" else -12), color=col, fontsize=9)
         if np.any(kind == 2):
             ax.scatter(q[kind == 2, 0], q[kind == 2, 1], marker="x", s=25, color=col, zorder=4,
                        label=f"{m} gradient points")
-        p = group(f, "particles", m)["position/value"][()][:, 0, :]
         pts += [q, p]
         ax.plot(p[:, 0], p[:, 1], ":", color=col, lw=0.8)
+        ends = ("start 2 and end 3 of the step" if one else
+                "step ends (positions after 0, 1, 2 steps)")
         ax.scatter(p[:, 0], p[:, 1], marker="o", s=22, color="k", zorder=5,
-                   label="step ends (positions after 0, 1, 2 steps)" if i == 0 else None)
+                   label=ends if i == 0 else None)
+        if one and i == 0:
+            for lab, pk in zip(["2", "3"], p):
+                ax.annotate(lab, pk, textcoords="offset points", xytext=(-12, 6), fontsize=10)
     if scene == "backfr" and "substeps" in f:
         sub = f["substeps/FR/position/value"][()][:, 0, :]
         fq = group(f, "force_evaluations", "FR")["position"][()][:, 0, :]
@@ -149,7 +191,8 @@ def point_figure(f, scene, figdir):
     ax.yaxis.set_major_locator(MaxNLocator(5))
     par = f["parameters"].attrs
     n = round(float(par["period"]) / float(par["eps"]))
-    ax.set_title("force-evaluation points, two steps to the pericentre, "
+    steps = "one step (2 -> 3) to" if one else "two steps to"
+    ax.set_title(f"force-evaluation points, {steps} the pericentre, "
                  + r"$\epsilon$" + f" = P/{n}", fontsize=10)
     ax.legend(frameon=True, framealpha=0.85, fontsize=8, loc="best")
     fig.tight_layout()

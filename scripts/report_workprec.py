@@ -6,8 +6,14 @@ Usage: report_workprec.py [H5 [MD [FIGDIR]]]
 
 The time each method needs to reach each target error is interpolated log-log between the
 two runs of its sweep that bracket the target (fsym-workprec extends every sweep until they
-exist); times are the minimum over interleaved repetitions, their spread the median and
-maximum over the same repetitions. Figures (PNG and PDF): error against run time, one
+exist); times are the minimum over interleaved repetitions, their spread the median over the
+same repetitions and the difference between the odd and the even rounds (two independent
+repetitions of the study). Of the two clocks recorded (wall, thread CPU) the one with the
+smaller median spread over all runs is used. A time verdict is called only when the ratio
+exceeds the measured spread of both contenders and both halves of the rounds agree;
+otherwise it is a tie. Evaluations are counted as forces and gradients separately, and as
+effective evaluations F + c G with the measured gradient cost c and its range. Figures
+(PNG and PDF): error against run time, one
 figure per orbit, methods split into panels of at most eight curves, each with its own
 colour and marker; the precession on the e = 0.9 orbit; error against evaluations.
 """
@@ -50,22 +56,51 @@ def load(path):
             for m in g.values():
                 lab = text(m.attrs["label"])
                 o["runs"][lab] = {k: m[k][()] for k in m.keys()}
+                # samples: (steps, rounds) as h5py shows the Fortran (rounds, steps) array
                 o["runs"][lab]["forward"] = int(m.attrs["forward"])
                 o["runs"][lab]["order"] = int(m.attrs["order"])
             data["orbits"].append(o)
     return data
 
 
-NOISE = 0.15  # a time ratio within 15 % is a tie
+CLOCKS = {"cpu": ("cpu_samples", "thread CPU time"), "wall": ("time_samples", "wall clock")}
 
 
-def time_to(run, errkey, target, gcost):
-    """(time, steps per period, (median-min)/min spread, effective evaluations) at the
-    target, or None and a reason."""
+def spread_of(samples):
+    """Relative spread of one run's samples: the larger of (median - minimum)/minimum and the
+    relative difference between the minima of the odd and the even rounds."""
+    lo = samples.min()
+    halves = abs(samples[0::2].min() / samples[1::2].min() - 1) if len(samples) > 1 else 0
+    return max(np.median(samples) / lo - 1, halves)
+
+
+def choose_clock(data):
+    """The clock whose median spread over every run of every orbit is smaller, and both
+    medians (or 'wall' for files without CPU samples)."""
+    med = {}
+    for clock, (key, _) in CLOCKS.items():
+        sp = [np.median(r[key], axis=1) / r[key].min(axis=1) - 1 for o in data["orbits"]
+              for r in o["runs"].values() if key in r]
+        med[clock] = float(np.median(np.concatenate(sp))) if sp else np.inf
+    return min(med, key=med.get), med
+
+
+def loglog(a, b, f):
+    """Log-log interpolation between a and b at fraction f (0 when either is 0)."""
+    if a <= 0 or b <= 0:
+        return 0.0
+    return float(np.exp(np.log(a) + f * (np.log(b) - np.log(a))))
+
+
+def time_to(run, errkey, target, clock):
+    """The run's cost of reaching the target: a dict with the time (minimum over all rounds,
+    over the odd and over the even rounds), its spread, the steps per period N* and the
+    force and gradient evaluations, each interpolated log-log between the two runs that
+    bracket the target; or None and a reason."""
     err = np.abs(run[errkey])
-    t, tmed = run["time_min"], run["time_median"]
+    smp = run[CLOCKS[clock][0]]
+    t = smp.min(axis=1)
     n = run["steps_per_period"]
-    ev = run["force_evals"] + gcost * run["grad_evals"]
     ok = np.isfinite(err) & (t > 0)
     for k in range(len(err)):
         if not ok[k] or not err[k] <= target:
@@ -75,12 +110,42 @@ def time_to(run, errkey, target, gcost):
         if not ok[k - 1]:
             return None, "the run before the crossing failed"
         f = np.log(target / err[k - 1]) / np.log(err[k] / err[k - 1])
-        lt = np.log(t[k - 1]) + f * (np.log(t[k]) - np.log(t[k - 1]))
-        ln = np.log(n[k - 1]) + f * (np.log(n[k]) - np.log(n[k - 1]))
-        spread = max(tmed[k - 1] / t[k - 1], tmed[k] / t[k]) - 1
-        le = np.log(ev[k - 1]) + f * (np.log(ev[k]) - np.log(ev[k - 1]))
-        return (np.exp(lt), np.exp(ln), spread, np.exp(le)), None
+        res = dict(time=loglog(t[k - 1], t[k], f),
+                   odd=loglog(smp[k - 1, 0::2].min(), smp[k, 0::2].min(), f),
+                   even=loglog(smp[k - 1, 1::2].min(), smp[k, 1::2].min(), f),
+                   spread=max(spread_of(smp[k - 1]), spread_of(smp[k])),
+                   n=loglog(n[k - 1], n[k], f),
+                   F=loglog(run["force_evals"][k - 1], run["force_evals"][k], f),
+                   G=loglog(run["grad_evals"][k - 1], run["grad_evals"][k], f))
+        return res, None
     return None, "not reached at the finest step P/%d" % round(n[-1])
+
+
+def time_verdict(bf, bn):
+    """Forward (bf) against non-forward (bn), each a time_to result: the verdict and the
+    band. Decided only when the ratio of the minima exceeds the product of the two measured
+    spreads and the odd and the even rounds on their own give the same side."""
+    ratio = bn["time"] / bf["time"]
+    band = (1 + bf["spread"]) * (1 + bn["spread"])
+    odd, even = bn["odd"] / bf["odd"], bn["even"] / bf["even"]
+    if ratio > band and odd > 1 and even > 1:
+        return "forward wins", ratio, band, odd, even
+    if ratio < 1 / band and odd < 1 and even < 1:
+        return "non-forward wins", ratio, band, odd, even
+    return "a tie within the measured spread", ratio, band, odd, even
+
+
+def eval_verdict(f4, n4, cmin, cmax):
+    """Fewest effective evaluations F + c G of each kind, for the gradient cost c at both
+    ends of its measured range: the verdict holds only when it is the same at both."""
+    out = []
+    for c in (cmin, cmax):
+        ef = min(r[2]["F"] + c * r[2]["G"] for r in f4)
+        en = min(r[2]["F"] + c * r[2]["G"] for r in n4)
+        out.append((ef, en, en / ef))
+    sides = {("forward" if r > 1 else "non-forward" if r < 1 else "tie") for _, _, r in out}
+    return (sides.pop() + " needs fewer" if len(sides) == 1 else
+            "depends on the gradient cost within its measured range"), out
 
 
 def targets(data):
@@ -106,21 +171,34 @@ def kind(label, run):
 
 def report(data, md, figdir):
     par = data["par"]
+    clock, med = choose_clock(data)
+    pairs = np.asarray(par.get("gradient_cost_pairs", [par["gradient_cost"]]), dtype=float)
+    gc, cmin, cmax = float(par["gradient_cost"]), float(pairs.min()), float(pairs.max())
+    gclock = text(par.get("gradient_cost_clock", "wall clock"))
     L = ["# Work-precision: error against run time", "",
          "Generated by `bash scripts/workprec.sh` (program `fsym-workprec` writes "
          "`out/work-precision.h5` and `doc/work-precision.csv`; `scripts/report_workprec.py` "
-         "renders this page and the figures from the HDF5 file). Every number below comes "
-         "from that run.", "",
+         "renders this page and the figures from the HDF5 file; rendering the same file "
+         "again gives the same text, nothing here is edited by hand). Every number below "
+         "comes from that run.", "",
          f"- Hardware: {par['hardware']}",
          f"- Compiler: {par['compiler']}; build flags `{par['build_flags']}`",
-         f"- Git commit: `{par['git_commit']}`",
+         f"- Git commit that made the numbers: `{par['git_commit']}`",
          f"- Total run time of the study: {float(par['total_seconds']):.1f} s",
-         f"- Timings: the minimum over {int(par['repetitions'])} interleaved repetitions "
-         "(every run of an orbit once per round, then the next round), each repetition at "
-         "least 4 ms long (short runs repeated within it); the spread quoted is "
-         "(median - minimum)/minimum over the same repetitions, the larger of the two runs "
-         "that bracket the target. The machine was shared with other jobs while this ran; "
-         f"time ratios within {100 * NOISE:.0f} % are called a tie.", "",
+         f"- Timings: every run {int(par['repetitions'])} times in interleaved rounds (every "
+         "run of an orbit once per round, then the next round), each sample at least 4 ms "
+         "long (short runs repeated within it), on two clocks: the wall clock and the CPU "
+         "time of the thread (`clock_gettime(CLOCK_THREAD_CPUTIME_ID)`), which does not count "
+         "the time other jobs on the shared machine take the core. Median spread "
+         "(median - minimum)/minimum over all runs: wall clock "
+         f"{100 * med['wall']:.1f} %, thread CPU {100 * med['cpu']:.1f} %; this page uses the "
+         f"steadier, the {CLOCKS[clock][1]}. A time is the minimum over the rounds; its "
+         "spread is the larger of (median - minimum)/minimum and the relative difference "
+         "between the minima of the odd and of the even rounds (two independent repetitions), "
+         "the larger of the two runs that bracket the target.",
+         "- Verdicts: a faster kind is called only when the ratio of the two times exceeds "
+         "(1 + spread of one)(1 + spread of the other) and the odd and the even rounds on "
+         "their own put the same kind ahead; otherwise the verdict is a tie.", "",
          "## Setup", "",
          "- Methods: the library's catalogue (see doc/results.md for each method's source) "
          "and RKN; the forward/non-forward comparison is that of S. A. Chin, *Forward and "
@@ -137,12 +215,16 @@ def report(data, md, figdir):
          f"{float(par['base_grid'][1]):g} ({int(par['base_points'])} values), extended for "
          "each method by the same factor, coarser (down to P/4) or finer (up to P/4e6), "
          "until every target of its orbit is bracketed by two runs.",
-         "- Per run: wall time of the integration alone (`stepper%run`), force and gradient "
+         "- Per run: time of the integration alone (`stepper%run`), force and gradient "
          "evaluations (the library's counters), max relative energy error over every step, "
          "LRL precession at the end (signed, in the orbit's plane), phase-space error "
          "against `kepler_exact` (diagnostics in a separate, untimed run).",
-         f"- Measured cost of a gradient evaluation relative to a force evaluation: "
-         f"{float(par['gradient_cost']):.3f} (the evaluation plot uses F + that ratio x G).",
+         f"- Evaluations: forces F and gradients G are counted separately (the library's "
+         f"counters). Effective evaluations F + c G assume the measured cost c of a gradient "
+         f"relative to a force (Kepler model, {gclock}, {len(pairs)} interleaved pairs): "
+         f"c = {gc:.3f} (ratio of the minima; the pairs range over {cmin:.3f} .. "
+         f"{cmax:.3f}); a verdict on effective evaluations is called only when it is the same "
+         "at both ends of that range. The evaluation plot uses F + c G.",
          ""]
     for o in data["orbits"]:
         L.append(f"![{o['description']}](figures/work-precision-{o['key']}.png)")
@@ -151,25 +233,29 @@ def report(data, md, figdir):
           "## Time to reach a target error, ranked", "",
           "Time of a whole run (the stated number of periods) interpolated log-log between "
           "the two runs that bracket the target; N* is the interpolated number of steps per "
-          "period. F = forward method (all weights >= 0).", ""]
+          "period, F and G the interpolated force and gradient evaluations of the whole run. "
+          "Forward: all weights >= 0.", ""]
     bounded = 0
     for o, key, target, title in targets(data):
         rows = []
         for lab in data["methods"]:
             run = o["runs"][lab]
-            res, why = time_to(run, key, target, float(par["gradient_cost"]))
+            res, why = time_to(run, key, target, clock)
             rows.append((lab, run, res, why))
-        rows.sort(key=lambda r: r[2][0] if r[2] else np.inf)
+        rows.sort(key=lambda r: r[2]["time"] if r[2] else np.inf)
         L += [f"### {title}", "", "| rank | method | kind | order | time to target (ms) | "
-              "spread | N* | effective evaluations |", "|---|---|---|---|---|---|---|---|"]
+              "spread | N* | forces F | gradients G | F + c G |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
         for i, (lab, run, res, why) in enumerate(rows):
             if res:
                 L.append(f"| {i + 1} | {lab} | {kind(lab, run)} | {run['order']} | "
-                         f"{1e3 * res[0]:.3f} | {100 * res[2]:.0f} % | {res[1]:.0f} | "
-                         f"{res[3]:.4g} |")
+                         f"{1e3 * res['time']:.3f} | {100 * res['spread']:.1f} % | "
+                         f"{res['n']:.0f} | {res['F']:.4g} | {res['G']:.4g} | "
+                         f"{res['F'] + gc * res['G']:.4g} |")
             else:
                 bounded += 1
-                L.append(f"| - | {lab} | {kind(lab, run)} | {run['order']} | - ({why}) | | | |")
+                L.append(f"| - | {lab} | {kind(lab, run)} | {run['order']} | - ({why}) "
+                         "| | | | | |")
         fw = [r for r in rows if r[2] and r[1]["forward"] and r[0] != "RKN"]
         nf = [r for r in rows if r[2] and not r[1]["forward"] and r[0] != "RKN"]
         L.append("")
@@ -181,17 +267,17 @@ def report(data, md, figdir):
                 L.append(f"- {label}: one of the two kinds never reached the target.")
                 continue
             bf, bn = f4[0], n4[0]
-            ratio = bn[2][0] / bf[2][0]
-            verdict = ("forward wins" if ratio > 1 + NOISE else "non-forward wins"
-                       if ratio < 1 / (1 + NOISE) else f"a tie within {100 * NOISE:.0f} %")
-            ef = min(r[2][3] for r in f4)
-            en = min(r[2][3] for r in n4)
-            L.append(f"- {label}: fastest forward {bf[0]} ({1e3 * bf[2][0]:.3f} ms), fastest "
-                     f"non-forward {bn[0]} ({1e3 * bn[2][0]:.3f} ms): {verdict} (ratio "
-                     f"non-forward/forward {ratio:.2f}; timing spread of the two "
-                     f"{100 * bf[2][2]:.0f} % and {100 * bn[2][2]:.0f} %). Fewest effective "
-                     f"evaluations: forward {ef:.4g}, non-forward {en:.4g} (ratio "
-                     f"{en / ef:.2f}, free of timing noise).")
+            verdict, ratio, band, odd, even = time_verdict(bf[2], bn[2])
+            ev, ends = eval_verdict(f4, n4, cmin, cmax)
+            L.append(f"- {label}: fastest forward {bf[0]} ({1e3 * bf[2]['time']:.3f} ms, "
+                     f"spread {100 * bf[2]['spread']:.1f} %), fastest non-forward {bn[0]} "
+                     f"({1e3 * bn[2]['time']:.3f} ms, spread {100 * bn[2]['spread']:.1f} %): "
+                     f"{verdict} (ratio non-forward/forward {ratio:.3f} against the band "
+                     f"{band:.3f}; odd rounds {odd:.3f}, even rounds {even:.3f}). Fewest "
+                     f"effective evaluations F + c G: forward {ends[0][0]:.4g}, non-forward "
+                     f"{ends[0][1]:.4g} (ratio {ends[0][2]:.3f}) at c = {cmin:.3f}; forward "
+                     f"{ends[1][0]:.4g}, non-forward {ends[1][1]:.4g} (ratio "
+                     f"{ends[1][2]:.3f}) at c = {cmax:.3f}: {ev}.")
         top = [r for r in rows if r[2]][:5]
         L += [f"- Forward methods among the five fastest: "
               f"{sum(1 for r in top if r[1]['forward'] and r[0] != 'RKN')}.", ""]
@@ -233,17 +319,21 @@ def panels(data, orbit, xfun, xlabel, ykey, ylabel, title, name, figdir):
 def figures(data, figdir):
     os.makedirs(figdir, exist_ok=True)
     gcost = float(data["par"]["gradient_cost"])
+    clock, _ = choose_clock(data)
+    key, name = CLOCKS[clock]
+    xlabel = f"run time (s, {name}, minimum of repetitions)"
     for o in data["orbits"]:
-        panels(data, o, lambda r: r["time_min"], "run time (s, minimum of repetitions)",
+        panels(data, o, lambda r: r[key].min(axis=1), xlabel,
                "max_rel_energy_error", "max |dE/E|", f"Energy error against run time, "
                f"{o['description']}", f"work-precision-{o['key']}", figdir)
     o = data["orbits"][0]
-    panels(data, o, lambda r: r["time_min"], "run time (s, minimum of repetitions)",
-           "precession_rad", "|LRL precession| at the end (rad)",
+    panels(data, o, lambda r: r[key].min(axis=1), xlabel, "precession_rad",
+           "|LRL precession| at the end (rad)",
            f"Precession against run time, {o['description']}", "work-precision-precession",
            figdir)
     panels(data, o, lambda r: r["force_evals"] + gcost * r["grad_evals"],
-           f"effective evaluations F + {gcost:.2f} G", "max_rel_energy_error", "max |dE/E|",
+           f"effective evaluations F + c G, c = {gcost:.3f} (measured gradient cost)",
+           "max_rel_energy_error", "max |dE/E|",
            f"Energy error against evaluations, {o['description']}",
            "work-precision-evaluations", figdir)
 

@@ -3,7 +3,7 @@
 # shared cores) and renders the report and figures from its HDF5 file. Writes
 # out/work-precision.h5, doc/work-precision.csv, doc/work-precision.md and
 # doc/figures/work-precision-*.{png,pdf}.
-#   bash scripts/workprec.sh [--nsweep N] [--reps R] [--nmax N]   (defaults 12, 5, 20000)
+#   bash scripts/workprec.sh [--nsweep N] [--reps R] [--nmax N]   (defaults 12, 6, 20000)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 FSYM_PLOTS=1 source scripts/setup.sh
