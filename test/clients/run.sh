@@ -2,7 +2,10 @@
 # Proof by real clients, against the INSTALLED library. CTest runs it stage by stage (see
 # test/CMakeLists.txt); without arguments it runs every stage in a temporary folder.
 #
-#   run.sh install DIR      CMake build and install of the core library into DIR/prefix
+#   run.sh install DIR [TREE]
+#                           CMake build and install of the core library into DIR/prefix; with
+#                           TREE (a configured and built CMake tree of this project, as CTest
+#                           passes its own), `cmake --install TREE --prefix DIR/prefix` alone
 #   run.sh modern DIR       the modern reference client (`use fsym`), Makefile style
 #   run.sh f77 DIR          the F77 client with `gfortran ... -lfsym` alone (no HDF5, no
 #                           LAPACK), compared with the modern client bit for bit
@@ -23,6 +26,11 @@ quiet() { "$@" > "$work/log" 2>&1 || { cat "$work/log"; return 1; }; }
 fflags=(-O2 -ffp-contract=off)
 
 stage_install() {
+    if [ -n "${1:-}" ]; then
+        say "cmake --install $1 --prefix $prefix (the library of this tree)"
+        quiet cmake --install "$1" --prefix "$prefix"
+        return
+    fi
     say "CMake build and install of libfsym into $prefix"
     quiet cmake -S "$root" -B "$dir/lib" -DCMAKE_INSTALL_PREFIX="$prefix" \
         -DCMAKE_BUILD_TYPE=Release
@@ -100,7 +108,8 @@ stage_fpm() {
     command -v fpm >/dev/null 2>&1 || { say "fpm not on PATH: skipped"; exit 77; }
     mkdir -p "$work"
     say "fpm install --prefix $work/prefix; clients linked with -lforward-symplectic"
-    (cd "$root" && quiet fpm install --prefix "$work/prefix")
+    # the flags of fpm_consumer/check.sh: both then use one build of this package
+    (cd "$root" && quiet fpm install --flag "${fflags[*]}" --prefix "$work/prefix")
     local p=$work/prefix
     gfortran "${fflags[@]}" "$here/f77_nbody.f" -L"$p/lib" -lforward-symplectic \
         -o "$work/f77_nbody"
@@ -144,7 +153,7 @@ dir=$(mkdir -p "$2" && cd "$2" && pwd)
 prefix=$dir/prefix
 work=$dir/$stage
 case "$stage" in
-    install) work=$dir; stage_install ;;
+    install) work=$dir; stage_install "${3:-}" ;;
     modern | f77 | c | cmake | fpm) "stage_$stage" ;;
     example) stage_example "${3:-}" ;;
     *) echo "run.sh: unknown stage $stage" >&2; exit 2 ;;
