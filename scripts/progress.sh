@@ -48,9 +48,12 @@ fsym_heartbeat_line() {
     { read -r name; while read -r log; do
         parts+=("$(basename "${log%.log}") $(fsym_progress_of "$log")")
     done; } < "$fsym_progress_file"
-    local IFS=,
-    printf '[test] %s %s%s\n' "$(fsym_clock)" "${name:-starting}" \
-        "${parts[*]:+: ${parts[*]}}" >&2
+    local text=""
+    if [ ${#parts[@]} -gt 0 ]; then
+        text=": ${parts[0]}"
+        for log in "${parts[@]:1}"; do text+=", $log"; done
+    fi
+    printf '[test] %s %s%s\n' "$(fsym_clock)" "${name:-starting}" "$text" >&2
 }
 
 fsym_heartbeat_start() {

@@ -619,6 +619,12 @@ contains
                     return
                 end if
                 call fsym_scheme_an(n, s, stat=st, errmsg=msg)
+            else if (key(1:nk) == 'rkn') then
+                call fsym_report(FSYM_ERR_UNKNOWN_METHOD, '"'//trim(shown)//'" is the '// &
+                                 'Runge-Kutta-Nystrom comparator, not a splitting: get it '// &
+                                 'with fsym_new_stepper(''RKN'', model, d, n, stepper, '// &
+                                 'stat, errmsg) or as type(rkn_t)', stat, errmsg)
+                return
             else
                 call fsym_report(FSYM_ERR_UNKNOWN_METHOD, '"'//trim(shown)// &
                                  '" (known: T2 FR A A'' C C'' AN AN'' M1 M1(t1) M2(t1)'// &
