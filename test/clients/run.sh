@@ -12,7 +12,8 @@
 #   run.sh c DIR            the C client with `pkg-config --libs --static fsym`, compared
 #   run.sh cmake DIR        the three through find_package(forward-symplectic), compared with
 #                           each other and with the Makefile-style modern client
-#   run.sh fpm DIR          the three against `fpm install` (exit 77, skipped, without fpm)
+#   run.sh fpm DIR          the three against `fpm install` (exit 77, skipped, without fpm),
+#                           whose modules must include every module of the CMake install
 #   run.sh example DIR [PFUNIT_DIR]
 #                           example/user_model_test: a user's model tested with pFUnit,
 #                           built with CMake against DIR/prefix, run by its own CTest
@@ -106,17 +107,32 @@ stage_cmake() {
 
 stage_fpm() {
     command -v fpm >/dev/null 2>&1 || { say "fpm not on PATH: skipped"; exit 77; }
-    mkdir -p "$work"
-    say "fpm install --prefix $work/prefix; clients linked with -lforward-symplectic"
+    need_prefix; mkdir -p "$work"
+    local p=$work/prefix inc=include/forward-symplectic
+    say "fpm install --prefix $work/prefix --includedir $inc: the CMake layout, -lfsym"
     # the flags of fpm_consumer/check.sh: both then use one build of this package
-    (cd "$root" && quiet fpm install --flag "${fflags[*]}" --prefix "$work/prefix")
-    local p=$work/prefix
-    gfortran "${fflags[@]}" "$here/f77_nbody.f" -L"$p/lib" -lforward-symplectic \
+    (cd "$root" && quiet fpm install --flag "${fflags[*]}" --prefix "$p" --includedir "$inc")
+    [ -f "$p/lib/libfsym.a" ] || { say "fpm install gave no lib/libfsym.a"; exit 1; }
+    # every module the CMake install has (the library's, fsym_checks among them) is there too
+    local m missing=() extra=()
+    for m in "$prefix/$inc"/*.mod; do
+        [ -f "$p/$inc/$(basename "$m")" ] || missing+=("$(basename "$m")")
+    done
+    for m in "$p/$inc"/*.mod; do
+        [ -f "$prefix/$inc/$(basename "$m")" ] || extra+=("$(basename "$m" .mod)")
+    done
+    if [ ${#missing[@]} -gt 0 ]; then
+        say "fpm install lacks modules of the CMake install: ${missing[*]}"; exit 1
+    fi
+    say "fpm install has every module of the CMake install ($(ls "$prefix/$inc"/*.mod | wc -l))"
+    [ ${#extra[@]} -eq 0 ] || say "and, as fpm installs every module it builds, ${#extra[@]} of \
+the programs and examples: ${extra[*]}"
+    gfortran "${fflags[@]}" "$here/f77_nbody.f" -L"$p/lib" -lfsym \
         -o "$work/f77_nbody"
     cc -O2 -ffp-contract=off -I"$root/include" "$here/c_nbody.c" -L"$p/lib" \
-        -lforward-symplectic -lgfortran -lm -o "$work/c_nbody"
-    gfortran "${fflags[@]}" -I"$p/include" "$here/modern_nbody.f90" -L"$p/lib" \
-        -lforward-symplectic -J "$work" -o "$work/modern_nbody"
+        -lfsym -lgfortran -lm -o "$work/c_nbody"
+    gfortran "${fflags[@]}" -I"$p/$inc" "$here/modern_nbody.f90" -L"$p/lib" \
+        -lfsym -J "$work" -o "$work/modern_nbody"
     "$work/modern_nbody" > "$work/modern.txt"
     "$work/f77_nbody" > "$work/f77.txt"
     "$work/c_nbody" > "$work/c.txt"
