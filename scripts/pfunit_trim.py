@@ -9,8 +9,9 @@ kind (integers and reals of every kind, complex, logical, strings, unlimited pol
 every key kind: some 400 modules, most of pFUnit's build time. pFUnit 4.14 and fArgParse use
 only string, integer and real vectors and the string-to-unlimited map, so the element types
 are cut to the integer, real and string kinds (the "ordered" list, kept whole because the
-default-kind containers are aliases of the sized ones) plus unlimited polymorphic, and the keys
-to strings; v1's demo program is not built. When a CMakeLists.txt does not read as expected,
+default-kind containers are aliases of the sized ones) plus unlimited polymorphic, the keys to
+strings, the v2 containers to vectors and maps (no queue, stack, deque, set or ordered map);
+v1's demo program is not built. When a CMakeLists.txt does not read as expected,
 nothing is changed and the full build runs.
 """
 import pathlib
@@ -26,6 +27,13 @@ EDITS = [
     (r'add_executable \(demo\.x demo\.F90\)\s*target_link_libraries \(demo\.x [^)]*\)', '',
      (0, 1)),
 ]
+# v2 only: no queues, stacks, deques, sets or ordered maps (vectors and maps are used)
+EDITS_V2 = [
+    (r'foreach \(Container Queue Stack\)', 'foreach (Container)', (0, 1)),
+    (r'foreach \(Container Deque\)', 'foreach (Container)', (0, 1)),
+    (r'foreach \(Container Set\)', 'foreach (Container)', (0, 1)),
+    (r'foreach \(Container Map OrderedMap\)', 'foreach (Container Map)', (0, 1)),
+]
 
 
 def main() -> int:
@@ -40,7 +48,8 @@ def main() -> int:
             print(f'gFTL-shared not trimmed: no {path}; full build')
             return 0
         text = path.read_text()
-        for pattern, replacement, counts in EDITS:
+        edits = EDITS + (EDITS_V2 if version == 'v2' else [])
+        for pattern, replacement, counts in edits:
             if version == 'v2' and 'demo' in pattern:
                 continue
             text, n = re.subn(pattern, replacement, text)

@@ -208,7 +208,9 @@ contains
                     have_a = .true.; have_g = .true.
                 case (OP_EXTRAP_KICK)
                     if (.not. have_a) nforce = nforce + 1
-                    if (.not. (have_x .and. x_shift == u(k))) nforce = nforce + 1
+                    ! x_shift == u(k), exactly (the same shift: the force is reused)
+                    if (.not. (have_x .and. x_shift <= u(k) .and. x_shift >= u(k))) &
+                        nforce = nforce + 1
                     have_a = .true.; have_x = .true.; x_shift = u(k)
                 case default
                     ! op codes are validated when a scheme is built
