@@ -209,8 +209,9 @@ contains
                 case (OP_EXTRAP_KICK)
                     if (.not. have_a) nforce = nforce + 1
                     ! x_shift == u(k), exactly (the same shift: the force is reused)
-                    if (.not. (have_x .and. x_shift <= u(k) .and. x_shift >= u(k))) &
+                    if (.not. (have_x .and. x_shift <= u(k) .and. x_shift >= u(k))) then
                         nforce = nforce + 1
+                    end if
                     have_a = .true.; have_x = .true.; x_shift = u(k)
                 case default
                     ! op codes are validated when a scheme is built
