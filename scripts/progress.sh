@@ -58,6 +58,7 @@ fsym_heartbeat_line() {
 
 fsym_heartbeat_start() {
     (
+        set +e   # a failed read or grep must not end the heartbeat
         trap 'exit 0' TERM
         while sleep "${FSYM_HEARTBEAT:-30}"; do fsym_heartbeat_line; done
     ) &
