@@ -27,6 +27,7 @@ contains
         real(wp), intent(in), contiguous :: q(:, :)     !! positions (d, n)
         real(wp), intent(out), contiguous :: a(:, :)    !! accelerations (d, n)
         integer, intent(inout) :: stat                  !! unchanged
+        associate (unused_stat => stat); end associate   ! not needed here
         call scale_by_r3(-self%mu, q, q, a)
     end subroutine user_acceleration
 
@@ -37,6 +38,7 @@ contains
         real(wp), intent(in), contiguous :: a(:, :)     !! accelerations at q
         real(wp), intent(out), contiguous :: g(:, :)    !! gradient term (d, n)
         integer, intent(inout) :: stat                  !! unchanged
+        associate (unused_stat => stat); end associate   ! not needed here
         call scale_by_r3(4.0_wp * self%mu, q, a, g)
     end subroutine user_gradient
 
@@ -113,6 +115,7 @@ contains
     !> The model has the gradient term.
     logical function user_has_gradient(self)
         class(user_kepler_t), intent(in) :: self        !! the model
+        associate (unused_self => self); end associate   ! not needed here
         user_has_gradient = .true.
     end function user_has_gradient
 

@@ -91,7 +91,7 @@ contains
         real(wp), intent(in) :: a, b  !! the coefficient at eps and at eps/2
         real(wp) :: s
         s = max(abs(a), abs(b))
-        if (s == 0.0_wp) then
+        if (s <= 0.0_wp) then   ! s >= 0: s == 0
             fsym_relative_difference = 0.0_wp
         else
             fsym_relative_difference = abs(a - b) / s
@@ -125,7 +125,7 @@ contains
         call kepler_lrl(q, v, lrl, self%mu)
         rel = fsym_vector_angle(self%lrl0, lrl)      ! in (-pi, pi], exact near 0
         turns = anint((self%rotation - rel) / (2.0_wp * FSYM_PI))
-        if (turns == 0.0_wp) then
+        if (abs(turns) < 0.5_wp) then   ! turns is a whole number: turns == 0
             self%rotation = rel
         else
             self%rotation = rel + turns * (2.0_wp * FSYM_PI)

@@ -117,18 +117,19 @@ contains
         real(wp), intent(in), contiguous :: q(:, :)                      !! positions (1, n)
         real(wp), intent(out), contiguous :: a(:, :)                     !! accelerations (1, n)
         integer, intent(inout) :: stat                       !! 1 when unset or the shape is wrong
-        integer :: s, n
+        integer :: s, n, left, right
         real(wp) :: d, f
         n = size(q, 2)
         if (.not. chain_ready(self, q)) then
             a = 0.0_wp; stat = 1; return
         end if
         a = 0.0_wp
-        do s = 0, n
+        do s = 0, n   ! spring s joins masses s (left) and s + 1 (right); 0 and n + 1 are walls
             d = stretch(q(1, :), s)
             f = self%k(s + 1) * d + self%b(s + 1) * d**3
-            if (s >= 1) a(1, s) = a(1, s) + f
-            if (s < n) a(1, s + 1) = a(1, s + 1) - f
+            left = s; right = s + 1
+            if (left >= 1) a(1, left) = a(1, left) + f
+            if (right <= n) a(1, right) = a(1, right) - f
         end do
     end subroutine chain_acceleration
 
@@ -140,7 +141,7 @@ contains
         real(wp), intent(in), contiguous :: a(:, :)                      !! accelerations at q
         real(wp), intent(out), contiguous :: g(:, :)                     !! gradient term (1, n)
         integer, intent(inout) :: stat                       !! 1 when unset or the shape is wrong
-        integer :: s, n
+        integer :: s, n, left, right
         real(wp) :: d, f
         n = size(q, 2)
         if (.not. chain_ready(self, q)) then
@@ -151,8 +152,9 @@ contains
             d = stretch(q(1, :), s)
             f = (self%k(s + 1) + 3.0_wp * self%b(s + 1) * d**2) * stretch(a(1, :), s)
             ! H a gets -f at the spring's left mass and +f at its right mass; g = -2 H a
-            if (s >= 1) g(1, s) = g(1, s) + 2.0_wp * f
-            if (s < n) g(1, s + 1) = g(1, s + 1) - 2.0_wp * f
+            left = s; right = s + 1
+            if (left >= 1) g(1, left) = g(1, left) + 2.0_wp * f
+            if (right <= n) g(1, right) = g(1, right) - 2.0_wp * f
         end do
     end subroutine chain_gradient
 

@@ -36,6 +36,7 @@ contains
         real(wp) :: d1, d3, k2, k4
         integer(ik) :: i
         integer :: st
+        associate (unused_g => g); end associate   ! not needed here
         st = 0
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h
         do i = 1, nsteps
@@ -157,6 +158,7 @@ contains
         real(wp) :: d1, d3, d5, d7, k2, k4, k6
         integer(ik) :: i
         integer :: st
+        associate (unused_g => g); end associate   ! not needed here
         st = 0
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h; d5 = c(5) * h
         k6 = c(6) * h; d7 = c(7) * h
@@ -193,9 +195,10 @@ contains
         real(wp), intent(inout) :: q(2, n), v(2, n)         !! state
         real(wp), intent(inout) :: a(2, n), g(2, n)         !! force, gradient carried across steps
         real(wp) :: d1, d3, k2, k4
-        real(wp) :: x, y, vx, vy, ax, ay, gx, gy
+        real(wp) :: x, y, vx, vy, ax, ay
         integer(ik) :: i
         integer :: j
+        associate (unused_a => a, unused_g => g); end associate   ! not needed here
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h
         do i = 1, nsteps
             do j = 1, n
@@ -228,6 +231,7 @@ contains
         real(wp) :: x, y, vx, vy, ax, ay, gx, gy
         integer(ik) :: i
         integer :: j
+        associate (unused_g => g); end associate   ! not needed here
         k1 = c(1) * h; d2 = c(2) * h; k3 = c(3) * h; g3 = u(3) * h**3
         do j = 1, n
             call acc2(q(1, j), q(2, j), a(1, j), a(2, j))
@@ -262,6 +266,7 @@ contains
         real(wp) :: x, y, vx, vy, ax, ay, gx, gy
         integer(ik) :: i
         integer :: j
+        associate (unused_a => a, unused_g => g); end associate   ! not needed here
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h; g4 = u(4) * h**3
         do i = 1, nsteps
             do j = 1, n
@@ -336,9 +341,10 @@ contains
         real(wp), intent(inout) :: q(2, n), v(2, n)         !! state
         real(wp), intent(inout) :: a(2, n), g(2, n)         !! force, gradient carried across steps
         real(wp) :: d1, d3, d5, d7, k2, k4, k6
-        real(wp) :: x, y, vx, vy, ax, ay, gx, gy
+        real(wp) :: x, y, vx, vy, ax, ay
         integer(ik) :: i
         integer :: j
+        associate (unused_a => a, unused_g => g); end associate   ! not needed here
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h; d5 = c(5) * h
         k6 = c(6) * h; d7 = c(7) * h
         do i = 1, nsteps
@@ -378,9 +384,10 @@ contains
         real(wp), intent(inout) :: q(3, n), v(3, n)         !! state
         real(wp), intent(inout) :: a(3, n), g(3, n)         !! force, gradient carried across steps
         real(wp) :: d1, d3, k2, k4
-        real(wp) :: x, y, z, vx, vy, vz, ax, ay, az, gx, gy, gz
+        real(wp) :: x, y, z, vx, vy, vz, ax, ay, az
         integer(ik) :: i
         integer :: j
+        associate (unused_a => a, unused_g => g); end associate   ! not needed here
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h
         do i = 1, nsteps
             do j = 1, n
@@ -413,6 +420,7 @@ contains
         real(wp) :: x, y, z, vx, vy, vz, ax, ay, az, gx, gy, gz
         integer(ik) :: i
         integer :: j
+        associate (unused_g => g); end associate   ! not needed here
         k1 = c(1) * h; d2 = c(2) * h; k3 = c(3) * h; g3 = u(3) * h**3
         do j = 1, n
             call acc3(q(1, j), q(2, j), q(3, j), a(1, j), a(2, j), a(3, j))
@@ -449,6 +457,7 @@ contains
         real(wp) :: x, y, z, vx, vy, vz, ax, ay, az, gx, gy, gz
         integer(ik) :: i
         integer :: j
+        associate (unused_a => a, unused_g => g); end associate   ! not needed here
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h; g4 = u(4) * h**3
         do i = 1, nsteps
             do j = 1, n
@@ -530,9 +539,10 @@ contains
         real(wp), intent(inout) :: q(3, n), v(3, n)         !! state
         real(wp), intent(inout) :: a(3, n), g(3, n)         !! force, gradient carried across steps
         real(wp) :: d1, d3, d5, d7, k2, k4, k6
-        real(wp) :: x, y, z, vx, vy, vz, ax, ay, az, gx, gy, gz
+        real(wp) :: x, y, z, vx, vy, vz, ax, ay, az
         integer(ik) :: i
         integer :: j
+        associate (unused_a => a, unused_g => g); end associate   ! not needed here
         d1 = c(1) * h; k2 = c(2) * h; d3 = c(3) * h; k4 = c(4) * h; d5 = c(5) * h
         k6 = c(6) * h; d7 = c(7) * h
         do i = 1, nsteps

@@ -89,7 +89,7 @@ contains
                              stat, errmsg)
             return
         end if
-        a = map
+        allocate (a, source=map)
         allocate (wr(n), wi(n))
         call dgeev('N', 'N', n, a, n, wr, wi, dummy, 1, dummy, 1, query, -1, info)
         allocate (work(max(1, int(query(1)))))

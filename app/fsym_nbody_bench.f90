@@ -25,6 +25,7 @@ contains
         real(wp), intent(in), contiguous :: q(:, :)              !! positions
         real(wp), intent(out), contiguous :: a(:, :)             !! accelerations (zero)
         integer, intent(inout) :: stat               !! unchanged
+        associate (unused_q => q, unused_self => self, unused_stat => stat); end associate
         a = 0.0_wp
     end subroutine zero_acceleration
 

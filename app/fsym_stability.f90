@@ -229,17 +229,18 @@ contains
     subroutine flag_peaks(err, flag)
         real(wp), intent(in) :: err(:)
         logical, intent(out) :: flag(:)
-        integer :: j, n
+        integer :: j, n, lo, hi
         real(wp) :: ref
         n = size(err)
         flag = .false.
         do j = 1, n
             if (err(j) < 0.0_wp) cycle
             if (abs(scan_x(j) - FSYM_PI * nint(scan_x(j) / FSYM_PI)) < 0.05_wp) flag(j) = .true.
-            if (j > 3 .and. j + 3 <= n) then
-                if (err(j - 3) > 0.0_wp .and. err(j + 3) > 0.0_wp) then
-                    ref = sqrt(err(j - 3) * err(j + 3))
-                    if (err(j) > 10.0_wp * ref .and. err(j) >= maxval(err(j - 2:j + 2))) then
+            lo = j - 3; hi = j + 3   ! the points 3 either side
+            if (lo >= 1 .and. hi <= n) then
+                if (err(lo) > 0.0_wp .and. err(hi) > 0.0_wp) then
+                    ref = sqrt(err(lo) * err(hi))
+                    if (err(j) > 10.0_wp * ref .and. err(j) >= maxval(err(lo + 1:hi - 1))) then
                         flag(j) = .true.
                     end if
                 end if

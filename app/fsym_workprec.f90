@@ -20,7 +20,7 @@
 !> (d = 3, 50 periods).
 program fsym_workprec
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
-    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
     use fsym
     use fsym_timing, only: seconds_since, median, thread_cpu_seconds
     use fsym_h5, only: h5_file_t, fsym_check_writable, fsym_open_text, fsym_commit_text, &
@@ -344,7 +344,7 @@ contains
         t = seconds_since(t1) / inner(ie, im, io)
         tc = (thread_cpu_seconds() - c1) / inner(ie, im, io)
         if (c1 < 0.0_wp) tc = ieee_nan()
-        if (samples(1, ie, im, io) /= samples(1, ie, im, io) .and. t * inner(ie, im, io) &
+        if (ieee_is_nan(samples(1, ie, im, io)) .and. t * inner(ie, im, io) &
             < TMIN_RUN) then               ! first round: fix the inner repetitions
             inner(ie, im, io) = min(1000, ceiling(TMIN_RUN / max(t, 1.0e-7_wp)))
         end if
@@ -382,7 +382,7 @@ contains
             tg(r) = cpu_or_wall(c1, t1)
             sink = sink + g(1, 1)
         end do
-        if (sink == 0.123_wp) write (output_unit, '(a)') '.'
+        if (sink <= 0.123_wp .and. sink >= 0.123_wp) write (output_unit, '(a)') '.'
         cost = minval(tg) / minval(tf)
         pair = tg / tf
     end subroutine gradient_cost

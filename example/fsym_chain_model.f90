@@ -33,7 +33,7 @@ contains
         do j = 1, size(q, 2) - 1
             dq = q(:, j + 1) - q(:, j)
             r = norm2(dq)
-            if (r == 0.0_wp) then
+            if (r <= 0.0_wp) then   ! coincident masses (r >= 0)
                 stat = 1
                 return
             end if
@@ -50,6 +50,7 @@ contains
         real(wp), intent(out) :: epot                 !! potential energy
         integer, intent(inout) :: stat                !! never set
         integer :: j
+        associate (unused_stat => stat); end associate   ! not needed here
         epot = 0.0_wp
         do j = 1, size(q, 2) - 1
             epot = epot + 0.5_wp * self%k(j) * (norm2(q(:, j + 1) - q(:, j)) - self%len0)**2
@@ -59,6 +60,7 @@ contains
     !> The chain provides its potential.
     logical function chain_has_potential(self)
         class(chain_model_t), intent(in) :: self  !! the chain
+        associate (unused_self => self); end associate   ! not needed here
         chain_has_potential = .true.
     end function chain_has_potential
 

@@ -12,7 +12,7 @@ program fsym_example_catalogue
     character(len=256) :: errmsg
     character(len=16) :: nop, order, symmetric
 
-    names = fsym_method_names()
+    allocate (names, source=fsym_method_names())
     write (*, '(a)') '| method | stages | forces/step | gradients/step | forward | symplectic'// &
         ' | symmetric | order |'
     write (*, '(a)') '|---|---:|---:|---:|---|---|---|---:|'

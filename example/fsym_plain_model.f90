@@ -18,6 +18,7 @@ contains
         real(wp), intent(in), contiguous :: q(:, :)               !! positions
         real(wp), intent(out), contiguous :: a(:, :)              !! accelerations
         integer, intent(inout) :: stat                !! never set
+        associate (unused_self => self, unused_stat => stat); end associate   ! not needed here
         a = -q
     end subroutine plain_acceleration
 

@@ -122,7 +122,11 @@ program fsym_mpi_driver
             end if
         end do
         ok_local = 0
-        if (failed_at > 0 .and. same(ql, q0) .and. same(vl, v0)) ok_local = failed_at
+        if (failed_at > 0) then   ! nested: each comparison is made (same is not pure)
+            if (same(ql, q0)) then
+                if (same(vl, v0)) ok_local = failed_at
+            end if
+        end if
         call MPI_Allreduce(ok_local, ok_all, 1, MPI_INTEGER, MPI_MIN, MPI_COMM_WORLD, ierr)
         k = ok_all
         call MPI_Allreduce(ok_local, ok_all, 1, MPI_INTEGER, MPI_MAX, MPI_COMM_WORLD, ierr)
@@ -211,8 +215,8 @@ contains
         type(integrator_t) :: sinteg
         real(wp), allocatable :: qs(:, :), vs(:, :)
         integer :: sst
-        qs = q
-        vs = v
+        allocate (qs, source=q)
+        allocate (vs, source=v)
         call smodel%init(m, 1.0_wp, SCALE_EPS, sst)
         call sinteg%init_by_name(trim(method), smodel, 3, n, sst)
         call sinteg%run(smodel, qs, vs, h, int(nsteps, ik), sst)

@@ -163,8 +163,8 @@ program fsym_scale_bench
             write (output_unit, '(a,a,i0,a,f0.3,a,f0.3,a,f0.1,a,f0.1,a,f0.4,a,i0)') trim(mode), &
                 ' N=', n, ' ns/pair=', 1.0e9_wp * minval(ta((k - 1) * reps + 1:k * reps)) / pairs, &
                 ' gradient_ns/pair=', 1.0e9_wp * minval(tg((k - 1) * reps + 1:k * reps)) / pairs, &
-                ' spread%=', spread(ta((k - 1) * reps + 1:k * reps)), &
-                ' gradient_spread%=', spread(tg((k - 1) * reps + 1:k * reps)), &
+                ' spread%=', spread_percent(ta((k - 1) * reps + 1:k * reps)), &
+                ' gradient_spread%=', spread_percent(tg((k - 1) * reps + 1:k * reps)), &
                 ' slice_ns/interaction=', &
                 1.0e9_wp * minval(tsl((k - 1) * r + 1:k * r)) / (real(nsl, wp) * (n - 1)), &
                 ' threads=', nthreads
@@ -182,7 +182,7 @@ program fsym_scale_bench
         if (st /= FSYM_SUCCESS) error stop 'fsym_scale_bench: run failed'
         write (output_unit, '(a,i0,a,a,a,i0,a,f0.3,a,f0.2)') 'step N=', n, ' method=', &
             trim(method), ' ranks=1 threads=', nthreads, ' us/step=', 1.0e6_wp * minval(ts), &
-            ' spread%=', spread(ts)
+            ' spread%=', spread_percent(ts)
         if (len_trim(fa) > 0) call scale_write_state(trim(fa), q, v, st)
     case ('bound')
         call bound_loop()
@@ -229,10 +229,10 @@ contains
     end subroutine bound_loop
 
     !> Spread of timings in per cent: max / min - 1.
-    pure real(wp) function spread(t)
+    pure real(wp) function spread_percent(t)
         real(wp), intent(in) :: t(:)  !! timings
-        spread = 100.0_wp * (maxval(t) / minval(t) - 1.0_wp)
-    end function spread
+        spread_percent = 100.0_wp * (maxval(t) / minval(t) - 1.0_wp)
+    end function spread_percent
 
     !> Read an end state written by `scale_write_state` (stops on error: a benchmark program).
     subroutine read_state(path, qq, vv)

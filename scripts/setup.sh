@@ -71,4 +71,4 @@ else
     export FSYM_PYTHON=python3
 fi
 command -v fpm >/dev/null 2>&1 || { fsym_say "fpm still not found"; exit 1; }
-fsym_say "gfortran $(gfortran -dumpversion), fpm $(fpm --version 2>/dev/null | awk '/Version/{print $2}')"
+fsym_say "gfortran $(gfortran -dumpversion), fpm $(fpm --version 2>/dev/null | awk '/Version/{sub(/,$/, "", $2); print $2}')"

@@ -1,55 +1,86 @@
 #!/usr/bin/env bash
 # The test command (the README's; .ci/run calls it). It installs what is missing
 # (scripts/setup.sh), finds or builds pFUnit (scripts/pfunit.sh, which says which it used),
-# builds the suite in two CMake trees and runs both with one CTest:
+# builds the suite in two CMake trees at once and runs both with one CTest:
 #   build/test-debug    -std=f2008 -g -O1 -fcheck=bounds,pointer -fbacktrace -ffp-contract=off:
 #                       every pFUnit test case (one CTest test per case, per method for the
-#                       per-method checks), the clients (F77, C, CMake consumer, fpm) and
-#                       example/user_model_test against the installed library;
-#   build/test-release  -O3 -march=native -ffp-contract=off: every pFUnit test case again,
-#                       so that the bitwise comparisons (label `bitwise`) hold there too;
-#                       this tree builds the library with OpenMP and the MPI parts
-#                       (FSYM_OPENMP, FSYM_MPI): threads and 1, 2, 4 ranks bitwise = serial;
-#                       and the optional imaginary-time library (FSYM_ITP, FFTW): test/itp.
-# It prints a summary per tree and ends with CTest's summary line
-# `100% tests passed, 0 tests failed out of N`; it exits non-zero when any test fails.
-# Arguments go to ctest, e.g. `scripts/test.sh -L bitwise` or `scripts/test.sh -R order`.
+#                       per-method checks), the H5MD conformance, the clients (F77, C, CMake
+#                       consumer, fpm) and example/user_model_test against an install of this
+#                       tree's library, the C-face fuzzing;
+#   build/test-release  -O3 -march=native -ffp-contract=off: the suites with bitwise tests
+#                       (FSYM_TEST_BITWISE_ONLY: the comparisons that must hold under release
+#                       flags too) and the threads and MPI tests: this tree builds the library
+#                       with OpenMP and the MPI parts (FSYM_OPENMP, FSYM_MPI): threads and 1,
+#                       2, 4 ranks bitwise = serial; and the optional imaginary-time library
+#                       (FSYM_ITP, FFTW): test/itp.
+# A progress line comes at least every 30 s (scripts/progress.sh: the phase and how far it
+# is; FSYM_HEARTBEAT=<seconds> changes the interval); the logs stay in build/test-*.log and
+# build/test-all/ctest.log. It prints a summary per tree and the time of each phase, and ends
+# with CTest's summary line `100% tests passed, 0 tests failed out of N`; it exits non-zero
+# when any test fails. Arguments go to ctest: `scripts/test.sh -L bitwise`, `-R order`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export FSYM_MPI=1   # the release tree builds the MPI parts: setup installs OpenMPI
 export FSYM_PLOTS=1 # h5py for the H5MD conformance tests of test/h5
+source scripts/progress.sh
+trap 'fsym_heartbeat_stop' EXIT
+fsym_heartbeat_start
+fsym_phase "setup (system packages, fpm, h5py)"
 source scripts/setup.sh
+fsym_phase "pFUnit"
 source scripts/pfunit.sh
 
 root=$(pwd)
 jobs=$(nproc)
 debug_flags="-std=f2008 -g -O1 -fcheck=bounds,pointer -fbacktrace -ffp-contract=off"
 release_flags="-O3 -march=native -ffp-contract=off"
-log=$(mktemp)
-trap 'rm -f "$log"' EXIT
+mkdir -p build/test-all
+log=build/test-all/ctest.log
 
-build_tree() {   # build_tree NAME BUILD_TYPE FLAGS CLIENTS [CMAKE OPTIONS...]
-    local dir=build/test-$1 extra=("${@:5}")
+configure_tree() {   # configure_tree NAME BUILD_TYPE FLAGS [CMAKE OPTIONS...]
+    local dir=build/test-$1 extra=("${@:4}")
     printf '[test] %s tree: %s (%s)\n' "$1" "$dir" "$3"
     cmake -S "$root" -B "$dir" -DFSYM_BUILD_TESTS=ON -DFSYM_TEST_TREE="$1" \
-        -DFSYM_TEST_CLIENTS="$4" -DCMAKE_BUILD_TYPE="$2" -DPFUNIT_DIR="$FSYM_PFUNIT_DIR" \
-        -DCMAKE_Fortran_FLAGS_DEBUG="$3" -DCMAKE_Fortran_FLAGS_RELEASE="$3" "${extra[@]}" > "$log" 2>&1 \
-        || { cat "$log"; exit 1; }
-    cmake --build "$dir" -j "$jobs" > "$log" 2>&1 || { cat "$log"; exit 1; }
+        -DCMAKE_BUILD_TYPE="$2" -DPFUNIT_DIR="$FSYM_PFUNIT_DIR" \
+        -DCMAKE_Fortran_FLAGS_DEBUG="$3" -DCMAKE_Fortran_FLAGS_RELEASE="$3" "${extra[@]}" \
+        > "build/test-$1.log" 2>&1 || { cat "build/test-$1.log"; exit 1; }
 }
 
-build_tree debug Debug "$debug_flags" ON
-build_tree release Release "$release_flags" OFF -DFSYM_OPENMP=ON -DFSYM_MPI=ON -DFSYM_ITP=ON
+fsym_phase "configure"
+configure_tree debug Debug "$debug_flags" -DFSYM_TEST_CLIENTS=ON -DFSYM_TEST_BITWISE_ONLY=OFF
+configure_tree release Release "$release_flags" -DFSYM_TEST_CLIENTS=OFF \
+    -DFSYM_TEST_BITWISE_ONLY=ON -DFSYM_OPENMP=ON -DFSYM_MPI=ON -DFSYM_ITP=ON
+
+# The two trees build at the same time: the library's modules compile one after another (each
+# needs the one before), so one tree alone leaves a core idle much of the time.
+fsym_phase "build" build/test-debug.log build/test-release.log
+pids=()
+for tree in debug release; do
+    cmake --build "build/test-$tree" -j "$jobs" >> "build/test-$tree.log" 2>&1 &
+    pids+=($!)
+done
+failed=()
+wait "${pids[0]}" || failed+=(debug)
+wait "${pids[1]}" || failed+=(release)
+if [ ${#failed[@]} -gt 0 ]; then
+    fsym_heartbeat_stop
+    for tree in "${failed[@]}"; do
+        tail -n 60 "build/test-$tree.log"
+        printf '[test] the %s tree did not build (log: build/test-%s.log)\n' "$tree" "$tree"
+    done
+    exit 1
+fi
 
 # one CTest over both trees
-mkdir -p build/test-all
 cat > build/test-all/CTestTestfile.cmake <<EOF
 # Generated by scripts/test.sh: the two test trees under one CTest.
 subdirs("$root/build/test-debug")
 subdirs("$root/build/test-release")
 EOF
+fsym_phase "tests" "$log"
 rc=0
 (cd build/test-all && ctest -j "$jobs" --output-on-failure "$@") 2>&1 | tee "$log" || rc=$?
+fsym_heartbeat_stop
 
 printf '\n[test] per tree:\n'
 for tree in debug release; do
@@ -60,6 +91,7 @@ for tree in debug release; do
         END { printf "[test]   %-8s %d tests, %d passed, %d skipped, %d failed\n", t, n, p, s, f }
         ' "$log"
 done
+fsym_phases_summary 2>&1
 summary=$(grep -E '^[0-9]+% tests passed, [0-9]+ tests? failed out of [0-9]+' "$log" | tail -n 1)
 if [ -z "$summary" ]; then
     echo "0% tests passed, 1 tests failed out of 1   (CTest printed no summary)"

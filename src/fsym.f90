@@ -15,6 +15,8 @@ module fsym
     use fsym_nbody
     use fsym_trace
     use fsym_analysis
+    use fsym_checks
+    use fsym_nbody_frequency
     ! The studies (linear stability through LAPACK, FPU chains, stability runs, the paper's
     ! diagnostics) are not part of the library: they live beside the programs in app/.
     implicit none

@@ -66,7 +66,7 @@ contains
         real(wp), allocatable :: j0(:, :), r(:, :)
         integer :: m, k, i
         m = size(jac, 1); k = m / 2
-        allocate (j0(m, m))
+        allocate (j0(m, m), r(m, m))
         j0 = 0.0_wp
         do i = 1, k
             j0(i, k + i) = 1.0_wp

@@ -130,9 +130,9 @@ contains
     !> S = sum_i m_i |a_i(q)|^2 (a is work space).
     subroutine weighted_square(model, q, m, a, s, st)
         class(force_model_t), intent(inout) :: model  !! the model
-        real(wp), intent(in) :: q(:, :)               !! positions
+        real(wp), intent(in), contiguous :: q(:, :)   !! positions
         real(wp), intent(in) :: m(:)                  !! masses
-        real(wp), intent(inout) :: a(:, :)            !! work: accelerations at q
+        real(wp), intent(inout), contiguous :: a(:, :) !! work: accelerations at q
         real(wp), intent(out) :: s                    !! the weighted sum
         integer, intent(out) :: st                    !! the model's status
         integer :: j
@@ -216,7 +216,8 @@ contains
                                stat, errmsg)
                 return
             end if
-            z = [reshape(q, [size(q)]), reshape(v, [size(v)])]
+            z(1:size(q)) = reshape(q, [size(q)])
+            z(size(q) + 1:) = reshape(v, [size(v)])
             if (k > 1) dif(k - 1) = maxval(abs(z - zprev))
             zprev = z
         end do

@@ -36,6 +36,7 @@ contains
         real(wp), intent(in), contiguous :: q(:, :)                    !! positions
         real(wp), intent(out), contiguous :: a(:, :)                   !! accelerations
         integer, intent(inout) :: stat                     !! unchanged
+        associate (unused => stat); end associate   ! the interface's argument; never fails
         a = -self%omega**2 * q
     end subroutine osc_acceleration
 
@@ -46,12 +47,14 @@ contains
         real(wp), intent(in), contiguous :: a(:, :)                    !! accelerations at q
         real(wp), intent(out), contiguous :: g(:, :)                   !! gradient term
         integer, intent(inout) :: stat                     !! unchanged
+        associate (unused_a => a, unused => stat); end associate   ! a is not needed here
         g = 2.0_wp * self%omega**4 * q
     end subroutine osc_gradient
 
     !> Provided.
     logical function osc_has(self)
         class(oscillator_model_t), intent(in) :: self  !! the model
+        associate (unused => self); end associate
         osc_has = .true.
     end function osc_has
 
@@ -61,6 +64,7 @@ contains
         real(wp), intent(in), contiguous :: q(:, :)                    !! positions
         real(wp), intent(out) :: epot                      !! potential energy
         integer, intent(inout) :: stat                     !! unchanged
+        associate (unused => stat); end associate
         epot = 0.5_wp * self%omega**2 * sum(q**2)
     end subroutine osc_potential
 
@@ -71,6 +75,7 @@ contains
         real(wp), intent(out), contiguous :: a(:, :)                     !! accelerations
         integer, intent(inout) :: stat                       !! unchanged
         integer :: j
+        associate (unused_self => self, unused => stat); end associate
         do j = 1, size(q, 2)
             a(1, j) = -q(1, j) - 2.0_wp * q(1, j) * q(2, j)
             a(2, j) = -q(2, j) - q(1, j)**2 + q(2, j)**2
@@ -86,6 +91,7 @@ contains
         integer, intent(inout) :: stat                       !! unchanged
         integer :: j
         real(wp) :: x, y
+        associate (unused_self => self, unused => stat); end associate
         do j = 1, size(q, 2)
             x = q(1, j); y = q(2, j)
             g(1, j) = 2.0_wp * (a(1, j) * (-1.0_wp - 2.0_wp * y) + a(2, j) * (-2.0_wp * x))
@@ -96,6 +102,7 @@ contains
     !> Provided.
     logical function hh_has(self)
         class(henon_heiles_model_t), intent(in) :: self  !! the model
+        associate (unused => self); end associate
         hh_has = .true.
     end function hh_has
 
@@ -105,6 +112,7 @@ contains
         real(wp), intent(in), contiguous :: q(:, :)                      !! positions (2, n)
         real(wp), intent(out) :: epot                        !! potential energy
         integer, intent(inout) :: stat                       !! unchanged
+        associate (unused_self => self, unused => stat); end associate
         epot = sum(0.5_wp * (q(1, :)**2 + q(2, :)**2) + q(1, :)**2 * q(2, :) - q(2, :)**3 / 3.0_wp)
     end subroutine hh_potential
 

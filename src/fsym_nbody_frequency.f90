@@ -4,6 +4,7 @@
 !> from the N-body model so that the model binds it as its `local_frequency`.
 module fsym_nbody_frequency
     use fsym_kinds, only: wp
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     implicit none
     private
 
@@ -28,7 +29,7 @@ contains
             do j = i + 1, n
                 s2 = sum((q(:, i) - q(:, j))**2) + eps**2
                 w2 = 2.0_wp * g * (m(i) + m(j)) / (s2 * sqrt(s2))
-                if (w2 > omega2 .or. .not. (w2 == w2)) then
+                if (w2 > omega2 .or. ieee_is_nan(w2)) then
                     omega2 = w2; r = sqrt(s2)
                 end if
             end do

@@ -150,7 +150,8 @@ contains
         character(len=*), intent(inout), optional :: errmsg  !! message on error
         real(wp), allocatable :: x(:), y(:)
         integer :: m, k, ist, ops(0)
-        m = count(a /= 0.0_wp)
+        ! a /= 0, written without == or /= on reals (no -Wcompare-reals; NaN counts)
+        m = count(.not. (a <= 0.0_wp .and. a >= 0.0_wp))
         if (m == 0) then
             call fsym_scheme_custom(name, ops, [real(wp) ::], [real(wp) ::], order, scheme, &
                                     stat, errmsg)
@@ -163,7 +164,7 @@ contains
                              stat, errmsg)
             return
         end if
-        y(:) = pack(a, a /= 0.0_wp)
+        y(:) = pack(a, .not. (a <= 0.0_wp .and. a >= 0.0_wp))
         x(1) = 0.5_wp * y(1)
         do k = 2, m
             x(k) = 0.5_wp * (y(k - 1) + y(k))
@@ -619,6 +620,12 @@ contains
                     return
                 end if
                 call fsym_scheme_an(n, s, stat=st, errmsg=msg)
+            else if (key(1:nk) == 'rkn') then
+                call fsym_report(FSYM_ERR_UNKNOWN_METHOD, '"'//trim(shown)//'" is the '// &
+                                 'Runge-Kutta-Nystrom comparator, not a splitting: get it '// &
+                                 'with fsym_new_stepper(''RKN'', model, d, n, stepper, '// &
+                                 'stat, errmsg) or as type(rkn_t)', stat, errmsg)
+                return
             else
                 call fsym_report(FSYM_ERR_UNKNOWN_METHOD, '"'//trim(shown)// &
                                  '" (known: T2 FR A A'' C C'' AN AN'' M1 M1(t1) M2(t1)'// &
@@ -758,7 +765,7 @@ contains
             if (ios /= 0) return
             read (text(p + 1:), *, iostat=ios) den
             if (ios /= 0) return
-            if (den == 0.0_wp) then
+            if (den <= 0.0_wp .and. den >= 0.0_wp) then   ! den == 0
                 ios = 1; return
             end if
             x = num / den

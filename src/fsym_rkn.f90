@@ -79,7 +79,7 @@ contains
                              stat, errmsg)
             return
         end if
-        if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
+        if (.not. (abs(h) > 0.0_wp .and. abs(h) <= huge(h))) then   ! zero, NaN or infinite
             call fsym_report(FSYM_ERR_BAD_STEP, 'RKN', stat, errmsg); return
         end if
         if (.not. (fsym_all_finite(d * n, q) .and. fsym_all_finite(d * n, v))) then

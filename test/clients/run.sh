@@ -2,14 +2,18 @@
 # Proof by real clients, against the INSTALLED library. CTest runs it stage by stage (see
 # test/CMakeLists.txt); without arguments it runs every stage in a temporary folder.
 #
-#   run.sh install DIR      CMake build and install of the core library into DIR/prefix
+#   run.sh install DIR [TREE]
+#                           CMake build and install of the core library into DIR/prefix; with
+#                           TREE (a configured and built CMake tree of this project, as CTest
+#                           passes its own), `cmake --install TREE --prefix DIR/prefix` alone
 #   run.sh modern DIR       the modern reference client (`use fsym`), Makefile style
 #   run.sh f77 DIR          the F77 client with `gfortran ... -lfsym` alone (no HDF5, no
 #                           LAPACK), compared with the modern client bit for bit
 #   run.sh c DIR            the C client with `pkg-config --libs --static fsym`, compared
 #   run.sh cmake DIR        the three through find_package(forward-symplectic), compared with
 #                           each other and with the Makefile-style modern client
-#   run.sh fpm DIR          the three against `fpm install` (exit 77, skipped, without fpm)
+#   run.sh fpm DIR          the three against `fpm install` (exit 77, skipped, without fpm),
+#                           whose modules must include every module of the CMake install
 #   run.sh example DIR [PFUNIT_DIR]
 #                           example/user_model_test: a user's model tested with pFUnit,
 #                           built with CMake against DIR/prefix, run by its own CTest
@@ -23,6 +27,11 @@ quiet() { "$@" > "$work/log" 2>&1 || { cat "$work/log"; return 1; }; }
 fflags=(-O2 -ffp-contract=off)
 
 stage_install() {
+    if [ -n "${1:-}" ]; then
+        say "cmake --install $1 --prefix $prefix (the library of this tree)"
+        quiet cmake --install "$1" --prefix "$prefix"
+        return
+    fi
     say "CMake build and install of libfsym into $prefix"
     quiet cmake -S "$root" -B "$dir/lib" -DCMAKE_INSTALL_PREFIX="$prefix" \
         -DCMAKE_BUILD_TYPE=Release
@@ -98,16 +107,32 @@ stage_cmake() {
 
 stage_fpm() {
     command -v fpm >/dev/null 2>&1 || { say "fpm not on PATH: skipped"; exit 77; }
-    mkdir -p "$work"
-    say "fpm install --prefix $work/prefix; clients linked with -lforward-symplectic"
-    (cd "$root" && quiet fpm install --prefix "$work/prefix")
-    local p=$work/prefix
-    gfortran "${fflags[@]}" "$here/f77_nbody.f" -L"$p/lib" -lforward-symplectic \
+    need_prefix; mkdir -p "$work"
+    local p=$work/prefix inc=include/forward-symplectic
+    say "fpm install --prefix $work/prefix --includedir $inc: the CMake layout, -lfsym"
+    # the flags of fpm_consumer/check.sh: both then use one build of this package
+    (cd "$root" && quiet fpm install --flag "${fflags[*]}" --prefix "$p" --includedir "$inc")
+    [ -f "$p/lib/libfsym.a" ] || { say "fpm install gave no lib/libfsym.a"; exit 1; }
+    # every module the CMake install has (the library's, fsym_checks among them) is there too
+    local m missing=() extra=()
+    for m in "$prefix/$inc"/*.mod; do
+        [ -f "$p/$inc/$(basename "$m")" ] || missing+=("$(basename "$m")")
+    done
+    for m in "$p/$inc"/*.mod; do
+        [ -f "$prefix/$inc/$(basename "$m")" ] || extra+=("$(basename "$m" .mod)")
+    done
+    if [ ${#missing[@]} -gt 0 ]; then
+        say "fpm install lacks modules of the CMake install: ${missing[*]}"; exit 1
+    fi
+    say "fpm install has every module of the CMake install ($(ls "$prefix/$inc"/*.mod | wc -l))"
+    [ ${#extra[@]} -eq 0 ] || say "and, as fpm installs every module it builds, ${#extra[@]} of \
+the programs and examples: ${extra[*]}"
+    gfortran "${fflags[@]}" "$here/f77_nbody.f" -L"$p/lib" -lfsym \
         -o "$work/f77_nbody"
     cc -O2 -ffp-contract=off -I"$root/include" "$here/c_nbody.c" -L"$p/lib" \
-        -lforward-symplectic -lgfortran -lm -o "$work/c_nbody"
-    gfortran "${fflags[@]}" -I"$p/include" "$here/modern_nbody.f90" -L"$p/lib" \
-        -lforward-symplectic -J "$work" -o "$work/modern_nbody"
+        -lfsym -lgfortran -lm -o "$work/c_nbody"
+    gfortran "${fflags[@]}" -I"$p/$inc" "$here/modern_nbody.f90" -L"$p/lib" \
+        -lfsym -J "$work" -o "$work/modern_nbody"
     "$work/modern_nbody" > "$work/modern.txt"
     "$work/f77_nbody" > "$work/f77.txt"
     "$work/c_nbody" > "$work/c.txt"
@@ -144,7 +169,7 @@ dir=$(mkdir -p "$2" && cd "$2" && pwd)
 prefix=$dir/prefix
 work=$dir/$stage
 case "$stage" in
-    install) work=$dir; stage_install ;;
+    install) work=$dir; stage_install "${3:-}" ;;
     modern | f77 | c | cmake | fpm) "stage_$stage" ;;
     example) stage_example "${3:-}" ;;
     *) echo "run.sh: unknown stage $stage" >&2; exit 2 ;;

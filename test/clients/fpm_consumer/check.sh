@@ -40,6 +40,38 @@ if ldd "$exe" | grep -qiE 'liblapack|libblas|libhdf5'; then
 else say "ldd: $(ldd "$exe" | awk '{print $1}' | tr '\n' ' ')"; fi
 "$exe" | sed 's/^/[fpm-consumer]   /' || { say "FAIL: the consumer did not run"; status=1; }
 
+# The other dependency lines of the README: a git dependency (here the URL of this checkout,
+# pinned to its commit, as a user's line names the public repository) gives the same program
+# output; an absolute path is refused by fpm 0.12 with "could not be found" (its own
+# limitation; the README says so and gives the relative path or git as the way): the check
+# fails if fpm refuses it in any other way, and says so when a later fpm accepts it.
+first=$("$exe")
+if git -C "$root" rev-parse HEAD > /dev/null 2>&1; then
+    rev=$(git -C "$root" rev-parse HEAD)
+    cp -r "$here/." "$tmp/consumer_git"
+    rm -rf "$tmp/consumer_git/build"
+    sed -i "s|path = \"../../..\"|git = \"file://$root\", rev = \"$rev\"|" \
+        "$tmp/consumer_git/fpm.toml"
+    grep -q "rev = \"$rev\"" "$tmp/consumer_git/fpm.toml" || { say "FAIL: git line not set"; exit 1; }
+    (cd "$tmp/consumer_git" && fpm build --flag "$flags" > "$tmp/git.log" 2>&1) \
+        || { cat "$tmp/git.log"; say "FAIL: git dependency did not build"; status=1; }
+    gexe=$(cd "$tmp/consumer_git" && fpm run --flag "$flags" --runner echo 2>/dev/null | tail -1)
+    if [ "$(cd "$tmp/consumer_git" && "$gexe")" = "$first" ]; then say "git dependency (file://..., rev = $rev): same output"
+    else say "FAIL: the git dependency's program prints something else"; status=1; fi
+else
+    say "not a git checkout: git dependency not tried"
+fi
+cp -r "$here/." "$tmp/consumer_abs"
+rm -rf "$tmp/consumer_abs/build"
+sed -i "s|path = \"../../..\"|path = \"$root\"|" "$tmp/consumer_abs/fpm.toml"
+if (cd "$tmp/consumer_abs" && fpm build --flag "$flags" > "$tmp/abs.log" 2>&1); then
+    say "absolute path dependency accepted by this fpm ($(fpm --version | awk '/Version/{print $2}'))"
+elif grep -q "could not be found" "$tmp/abs.log"; then
+    say "absolute path dependency refused by fpm as the README says (use a relative path or git)"
+else
+    cat "$tmp/abs.log"; say "FAIL: absolute path dependency failed otherwise"; status=1
+fi
+
 # Control: the same checks detect LAPACK where it is linked, and per-program pruning of app/.
 cd "$root"
 fpm build --flag "$flags" --verbose > "$tmp/self.log" 2>&1 || { cat "$tmp/self.log"; exit 1; }
