@@ -94,10 +94,9 @@ contains
         end if
         if (s%needs_gradient() .and. .not. model%has_gradient()) then
             call fsym_report(FSYM_ERR_NO_GRADIENT, 'method '//s%name// &
-                             ' needs the gradient term g = grad |a|^2, which this model does'// &
-                             ' not provide: override gradient and has_gradient in its type'// &
-                             ' (see doc/pages/force.md), or pass extrapolate=.true. to run '// &
-                             s%name//''' (no gradient needed)', stat, errmsg)
+                             ' needs grad |a|^2: override gradient and has_gradient in the'// &
+                             ' model (doc/pages/force.md), or pass extrapolate=.true. to run '// &
+                             s%name//'''', stat, errmsg)
             return
         end if
         comp = .false.
