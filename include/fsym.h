@@ -37,7 +37,8 @@ enum {
     FSYM_ERR_CHECKPOINT = 21,        /* checkpoint corrupt, other version, or not fitting */
     FSYM_ERR_CONVENTION = 22,        /* F77 caller with non-default integer size */
     FSYM_ERR_NO_MEMORY = 23,         /* an allocation failed (e.g. a huge method table) */
-    FSYM_ERR_LAST = 23               /* largest code in use */
+    FSYM_ERR_BUSY = 24,              /* integrator called from its own callback */
+    FSYM_ERR_LAST = 24               /* largest code in use */
 };
 
 /* Longest method label accepted (longer ones: FSYM_ERR_BAD_ARGUMENT, never cut). */

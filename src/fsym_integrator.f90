@@ -12,11 +12,13 @@ module fsym_integrator
                            fsym_kernel_invalidate, fsym_kernel_undo, fsym_kernel_slots, &
                            fsym_kernel_counts, fsym_kernel_stage
     use fsym_text, only: fsym_text_put, fsym_text_put_int
-    use fsym_guard, only: guard_t, fsym_guard_setup, fsym_guard_check, fsym_guard_message
+    use fsym_guard, only: guard_t, fsym_guard_setup, fsym_guard_message, fsym_guard_run
     use fsym_checkpoint, only: ckpt_clock_t, fsym_checkpoint_length, fsym_checkpoint_pack, &
                                fsym_checkpoint_unpack
     implicit none
     private
+
+    public :: fsym_overlap
 
     !> A splitting integrator: scheme + workspace + kernel state.
     type, extends(stepper_t), public :: integrator_t
@@ -30,6 +32,8 @@ module fsym_integrator
         logical :: ready = .false.
         logical :: needs_g = .false.        ! the scheme has gradient kicks
         type(guard_t) :: guard              ! the step-size guard (off by default)
+        logical :: busy = .false.           ! a step is in progress (re-entry is refused)
+        logical :: comp = .false.           ! compensated updates
     contains
         procedure :: init => integrator_init
             !! set up for a scheme, a model and arrays (d, n)
@@ -51,6 +55,8 @@ module fsym_integrator
             !! resume from a flat array: bitwise as if never interrupted
         procedure :: set_guard => integrator_set_guard
             !! turn the step-size guard on or off
+        procedure :: in_use => integrator_in_use
+            !! true while a step is in progress (inside the force model's calls)
     end type integrator_t
 
 contains
@@ -76,6 +82,10 @@ contains
         character(len=256) :: msg
         logical :: comp
 
+        if (self%busy) then
+            call fsym_report(FSYM_ERR_BUSY, 'init called from inside a step of the same '// &
+                             'integrator', stat, errmsg); return
+        end if
         if (d < 1 .or. n < 1) then
             call fsym_report(FSYM_ERR_SHAPE, 'need d >= 1 and n >= 1', stat, errmsg); return
         end if
@@ -120,6 +130,7 @@ contains
                                    s%ngrad, 0.0_wp)
         if (present(t0)) call self%set_time(t0)
         self%needs_g = s%needs_gradient()
+        self%comp = comp
         self%guard%on = .false.             ! a new set-up starts unguarded
         self%ready = .true.
         if (present(stat)) stat = FSYM_SUCCESS
@@ -160,7 +171,11 @@ contains
         integer(ik) :: ndone
         integer :: st
         st = refusal(self, q, v)
-        if (st == FSYM_SUCCESS) call advance(self, model, q, v, h, 1_ik, ndone, st, recorder)
+        if (st == FSYM_SUCCESS) then
+            self%busy = .true.
+            call advance(self, model, q, v, h, 1_ik, ndone, st, recorder)
+            self%busy = .false.
+        end if
         if (st /= FSYM_SUCCESS) then
             call report(self, q, v, st, stat, errmsg); return
         end if
@@ -187,6 +202,9 @@ contains
         integer(ik) :: left, chunk, ndone
         integer :: st
         logical :: stop
+        if (self%busy) then
+            call report(self, q, v, FSYM_ERR_BUSY, stat, errmsg); return
+        end if
         call self%note_stop(.false.)
         if (nsteps < 1) then
             call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'run: nsteps = '//fsym_int_text(nsteps)// &
@@ -198,7 +216,9 @@ contains
             call report(self, q, v, st, stat, errmsg); return
         end if
         if (.not. present(observer)) then
+            self%busy = .true.
             call advance(self, model, q, v, h, nsteps, ndone, st, recorder)
+            self%busy = .false.
             if (st /= FSYM_SUCCESS) then
                 call report(self, q, v, st, stat, errmsg); return
             end if
@@ -210,7 +230,9 @@ contains
         left = nsteps
         if (present(stat)) stat = FSYM_SUCCESS
         do while (left > 0)
+            self%busy = .true.     ! not while the observer looks: it may save a checkpoint
             call advance(self, model, q, v, h, min(chunk, left), ndone, st, recorder)
+            self%busy = .false.
             if (st /= FSYM_SUCCESS) call report(self, q, v, st, stat, errmsg)
             if (present(stat)) stat = st
             if (st /= FSYM_SUCCESS .or. ndone < min(chunk, left)) return
@@ -224,17 +246,36 @@ contains
         end do
     end subroutine integrator_run
 
-    !> FSYM_SUCCESS when the integrator is set up for arrays of the shape of q and v; else
-    !> why a step is refused.
-    pure integer function refusal(self, q, v) result(st)
+    !> FSYM_SUCCESS when the integrator is set up for arrays of the shape of q and v, is not
+    !> in a step already (FSYM_ERR_BUSY: a force model that steps its own integrator), and q
+    !> and v do not share memory (FSYM_ERR_BAD_ARGUMENT); else why a step is refused.
+    integer function refusal(self, q, v) result(st)
         class(integrator_t), intent(in) :: self
         real(wp), intent(in), contiguous :: q(:, :), v(:, :)
         st = FSYM_SUCCESS
-        if (.not. (self%ready .and. size(q, 1) == self%nd .and. size(q, 2) == self%nb &
-                   .and. size(v, 1) == self%nd .and. size(v, 2) == self%nb)) then
+        if (self%busy) then
+            st = FSYM_ERR_BUSY
+        else if (.not. (self%ready .and. size(q, 1) == self%nd .and. size(q, 2) == self%nb &
+                        .and. size(v, 1) == self%nd .and. size(v, 2) == self%nb)) then
             st = merge(FSYM_ERR_SHAPE, FSYM_ERR_NOT_INITIALIZED, self%ready)
+        else if (fsym_overlap(q, v)) then
+            st = FSYM_ERR_BAD_ARGUMENT
         end if
     end function refusal
+
+    !> Whether two contiguous arrays share memory (by address: the same array passed as q
+    !> and as v, or overlapping sections of one array).
+    logical function fsym_overlap(x, y)
+        real(wp), intent(in), contiguous, target :: x(:, :)  !! first array
+        real(wp), intent(in), contiguous, target :: y(:, :)  !! second array
+        integer(c_intptr_t) :: ax, ay, nx, ny
+        fsym_overlap = .false.
+        if (size(x) == 0 .or. size(y) == 0) return
+        ax = transfer(c_loc(x), ax); ay = transfer(c_loc(y), ay)
+        nx = size(x, kind=c_intptr_t) * (storage_size(x) / 8)
+        ny = size(y, kind=c_intptr_t) * (storage_size(y) / 8)
+        fsym_overlap = ax < ay + ny .and. ay < ax + nx
+    end function fsym_overlap
 
     !> Up to `nsteps` steps in one kernel call, with the checks a call makes, the clock and
     !> the counters, on arrays of the integrator's shape (`refusal` has checked it; explicit
@@ -279,6 +320,13 @@ contains
         select case (st)
         case (FSYM_ERR_NOT_INITIALIZED)
             call fsym_report(st, 'integrator_t%step before init', stat, errmsg)
+        case (FSYM_ERR_BUSY)
+            call fsym_report(st, 'a step of this integrator is in progress: its force '// &
+                             'model called it again (re-entry refused, nothing changed)', &
+                             stat, errmsg)
+        case (FSYM_ERR_BAD_ARGUMENT)
+            call fsym_report(st, 'q and v share memory (the same array, or overlapping '// &
+                             'sections, passed as both); nothing changed', stat, errmsg)
         case (FSYM_ERR_SHAPE)
             call fsym_report(st, shape_text(self%nd, self%nb, q, v), stat, errmsg)
         case (FSYM_ERR_NO_GRADIENT)
@@ -311,34 +359,20 @@ contains
         end if
     end subroutine watched_run
 
-    !> The kernel step by step, each step checked by the guard (h omega <= limit) at its
-    !> start and at its end; a step that ends beyond the limit is undone (the kernel keeps
-    !> the state of the step's start), so a refused step leaves the state as it was.
+    !> The kernel step by step under the guard (`fsym_guard_run`: every step checked at its
+    !> start, at every drift and at its end; a refused step is undone, the state intact).
     subroutine guarded_run(self, model, q, v, h, nsteps, ndone, st, recorder, step0)
         class(integrator_t), intent(inout) :: self
-        class(force_model_t), intent(inout) :: model
-        real(wp), intent(inout) :: q(self%nd, self%nb), v(self%nd, self%nb)
+        class(force_model_t), intent(inout), target :: model
+        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)
         real(wp), intent(in) :: h
         integer(ik), intent(in) :: nsteps, step0
         integer(ik), intent(out) :: ndone
         integer, intent(out) :: st
         class(recorder_t), intent(inout), optional :: recorder
-        integer(ik) :: i, nd
-        ndone = 0; st = FSYM_SUCCESS
-        do i = 1, nsteps
-            call fsym_guard_check(self%guard, model, q, h, st)
-            if (st /= FSYM_SUCCESS) exit
-            call fsym_kernel_run(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, model, &
-                                 self%ks, q, v, self%w(self%w0), h, 1_ik, nd, st, recorder, &
-                                 step0 + ndone)
-            if (st /= FSYM_SUCCESS) return
-            call fsym_guard_check(self%guard, model, q, h, st)
-            if (st /= FSYM_SUCCESS) then
-                call fsym_kernel_undo(self%ks, q, v, self%w(self%w0))   ! the step just taken
-                exit
-            end if
-            ndone = ndone + nd
-        end do
+        call fsym_guard_run(self%guard, self%sc%nop, self%sc%op, self%sc%c, self%sc%u, model, &
+                            self%ks, q, v, self%w(self%w0:), h, nsteps, ndone, st, self%comp, &
+                            recorder, step0)
     end subroutine guarded_run
 
     !> Turn the step-size guard on (`on`) or off. On, every step first asks the model for its
@@ -360,6 +394,9 @@ contains
         if (.not. self%ready) then
             call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'set_guard before init', stat, errmsg)
             return
+        end if
+        if (self%busy) then
+            call fsym_report(FSYM_ERR_BUSY, 'set_guard inside a step', stat, errmsg); return
         end if
         if (.not. on) then
             self%guard%on = .false.
@@ -402,9 +439,11 @@ contains
         call fsym_report(st, buf(1:p), stat, errmsg)
     end subroutine report_step_failure
 
-    !> Release the workspace; `init` must be called again before use.
+    !> Release the workspace; `init` must be called again before use. Ignored while a step
+    !> is in progress (from inside the force model: the step still uses the workspace).
     subroutine integrator_destroy(self)
         class(integrator_t), intent(inout) :: self  !! the integrator
+        if (self%busy) return
         if (allocated(self%w)) deallocate (self%w)
         self%ready = .false.
     end subroutine integrator_destroy
@@ -420,8 +459,14 @@ contains
     !> only after changing the force model's own parameters between steps.
     subroutine integrator_reset_cache(self)
         class(integrator_t), intent(inout) :: self  !! the integrator
-        call fsym_kernel_invalidate(self%ks)
+        if (.not. self%busy) call fsym_kernel_invalidate(self%ks)
     end subroutine integrator_reset_cache
+
+    !> True while a step of this integrator is in progress (its force model is being called).
+    pure logical function integrator_in_use(self)
+        class(integrator_t), intent(in) :: self  !! the integrator
+        integrator_in_use = self%busy
+    end function integrator_in_use
 
     !> Reals of workspace held (d * n * slots).
     pure integer(ik) function integrator_work_size(self)
@@ -488,17 +533,22 @@ contains
     !> The checks a checkpoint call makes: set up, shapes, length of ck.
     logical function checkpoint_fits(self, q, v, nck, stat, errmsg) result(ok)
         class(integrator_t), intent(in) :: self
-        real(wp), intent(in) :: q(:, :), v(:, :)
+        real(wp), intent(in), contiguous :: q(:, :), v(:, :)
         integer(ik), intent(in) :: nck
         integer, intent(out), optional :: stat
         character(len=*), intent(inout), optional :: errmsg
         ok = .false.
         if (.not. self%ready) then
             call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'checkpoint before init', stat, errmsg)
+        else if (self%busy) then
+            call fsym_report(FSYM_ERR_BUSY, 'checkpoint inside a step (from the force model)', &
+                             stat, errmsg)
         else if (size(q, 1) /= self%nd .or. size(q, 2) /= self%nb .or. &
                  size(v, 1) /= self%nd .or. size(v, 2) /= self%nb) then
             call fsym_report(FSYM_ERR_SHAPE, shape_text(self%nd, self%nb, q, v), stat, &
                              errmsg)
+        else if (fsym_overlap(q, v)) then
+            call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'q and v share memory', stat, errmsg)
         else if (nck < self%checkpoint_length()) then
             call fsym_report(FSYM_ERR_CHECKPOINT, 'checkpoint array shorter than '// &
                              fsym_int_text(self%checkpoint_length()), stat, errmsg)
