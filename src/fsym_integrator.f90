@@ -34,6 +34,8 @@ module fsym_integrator
         type(guard_t) :: guard              ! the step-size guard (off by default)
         logical :: busy = .false.           ! a step is in progress (re-entry is refused)
         logical :: comp = .false.           ! compensated updates
+        logical :: can_undo = .false.       ! the last call was one completed `step`
+        type(ckpt_clock_t) :: clock0        ! the clock before it
     contains
         procedure :: init => integrator_init
             !! set up for a scheme, a model and arrays (d, n)
@@ -57,6 +59,8 @@ module fsym_integrator
             !! turn the step-size guard on or off
         procedure :: in_use => integrator_in_use
             !! true while a step is in progress (inside the force model's calls)
+        procedure :: undo_step => integrator_undo_step
+            !! take back the step just completed by `step` (e.g. another MPI rank failed)
     end type integrator_t
 
 contains
@@ -131,6 +135,7 @@ contains
         if (present(t0)) call self%set_time(t0)
         self%needs_g = s%needs_gradient()
         self%comp = comp
+        self%can_undo = .false.
         self%guard%on = .false.             ! a new set-up starts unguarded
         self%ready = .true.
         if (present(stat)) stat = FSYM_SUCCESS
@@ -172,15 +177,55 @@ contains
         integer :: st
         st = refusal(self, q, v)
         if (st == FSYM_SUCCESS) then
+            self%can_undo = .false.
+            call self%clock_state(self%clock0%t_base, self%clock0%h_now, &
+                                  self%clock0%k_since, self%clock0%steps, 0)
             self%busy = .true.
             call advance(self, model, q, v, h, 1_ik, ndone, st, recorder)
             self%busy = .false.
+            self%can_undo = st == FSYM_SUCCESS
         end if
         if (st /= FSYM_SUCCESS) then
             call report(self, q, v, st, stat, errmsg); return
         end if
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine integrator_step
+
+    !> Take back the step just completed by `step` (the last call on this integrator): q and
+    !> v as at its start (bitwise, from the copies the kernel keeps), the clock and the step
+    !> count as before it, the cached force forgotten; the evaluation counters keep the
+    !> evaluations made. For a caller that learns after the step that it must not stand (an
+    !> MPI rank whose step succeeded while another's failed). Only once, and only right after
+    !> `step` with the same q and v: otherwise FSYM_ERR_BAD_REQUEST and nothing changes.
+    subroutine integrator_undo_step(self, q, v, stat, errmsg)
+        class(integrator_t), intent(inout) :: self            !! the integrator
+        real(wp), intent(inout), contiguous :: q(:, :)        !! positions (d, n)
+        real(wp), intent(inout), contiguous :: v(:, :)        !! velocities (d, n)
+        integer, intent(out), optional :: stat                !! status code
+        character(len=*), intent(inout), optional :: errmsg   !! message on error
+        integer :: st
+        st = refusal(self, q, v)
+        if (st /= FSYM_SUCCESS) then
+            call report(self, q, v, st, stat, errmsg); return
+        end if
+        if (.not. self%can_undo) then
+            call fsym_report(FSYM_ERR_BAD_REQUEST, 'undo_step: the last call was not a '// &
+                             'completed step (or it was undone already)', stat, errmsg)
+            return
+        end if
+        call undo(self, q, v)
+        self%can_undo = .false.
+        call self%clock_state(self%clock0%t_base, self%clock0%h_now, self%clock0%k_since, &
+                              self%clock0%steps, 1)
+        if (present(stat)) stat = FSYM_SUCCESS
+    end subroutine integrator_undo_step
+
+    !> The kernel's undo on arrays of the integrator's shape.
+    subroutine undo(self, q, v)
+        class(integrator_t), intent(inout) :: self
+        real(wp), intent(inout) :: q(self%nd, self%nb), v(self%nd, self%nb)
+        call fsym_kernel_undo(self%ks, q, v, self%w(self%w0))
+    end subroutine undo
 
     !> `nsteps` steps of size h; stops at the first failing step, leaving the state of the
     !> last good step (check `stat`; `steps()` tells how far it got). Bitwise the same as
@@ -205,6 +250,7 @@ contains
         if (self%busy) then
             call report(self, q, v, FSYM_ERR_BUSY, stat, errmsg); return
         end if
+        self%can_undo = .false.
         call self%note_stop(.false.)
         if (nsteps < 1) then
             call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'run: nsteps = '//fsym_int_text(nsteps)// &
@@ -525,6 +571,7 @@ contains
             call fsym_report(st, msg, stat, errmsg); return
         end if
         call self%clock_state(clock%t_base, clock%h_now, clock%k_since, clock%steps, 1)
+        self%can_undo = .false.
         call fsym_kernel_counts(self%ks, nf, ng)
         call self%counters(nf, ng, 1)
         if (present(stat)) stat = FSYM_SUCCESS
