@@ -374,7 +374,7 @@ contains
             call fsym_report(st, 'q and v share memory (the same array, or overlapping '// &
                              'sections, passed as both); nothing changed', stat, errmsg)
         case (FSYM_ERR_SHAPE)
-            call fsym_report(st, shape_text(self%nd, self%nb, q, v), stat, errmsg)
+            call fsym_report(st, trim(shape_text(self%nd, self%nb, q, v)), stat, errmsg)
         case (FSYM_ERR_NO_GRADIENT)
             call fsym_report(st, 'method '//self%sc%name//': this model has no gradient term', &
                              stat, errmsg)
@@ -592,7 +592,7 @@ contains
                              stat, errmsg)
         else if (size(q, 1) /= self%nd .or. size(q, 2) /= self%nb .or. &
                  size(v, 1) /= self%nd .or. size(v, 2) /= self%nb) then
-            call fsym_report(FSYM_ERR_SHAPE, shape_text(self%nd, self%nb, q, v), stat, &
+            call fsym_report(FSYM_ERR_SHAPE, trim(shape_text(self%nd, self%nb, q, v)), stat, &
                              errmsg)
         else if (fsym_overlap(q, v)) then
             call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'q and v share memory', stat, errmsg)
@@ -612,14 +612,14 @@ contains
         k = 1 + int(modulo(-addr, 64_c_intptr_t) / (storage_size(x) / 8))
     end function aligned_start
 
+    !> The shapes expected and given, in a fixed-length result (a deferred-length result
+    !> would keep its length in a static variable of the caller, shared by threads).
     function shape_text(d, n, q, v) result(s)
         integer, intent(in) :: d, n
         real(wp), intent(in) :: q(:, :), v(:, :)
-        character(len=:), allocatable :: s
-        character(len=128) :: buf
-        write (buf, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'expected (', d, ',', n, &
+        character(len=128) :: s
+        write (s, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'expected (', d, ',', n, &
             '), got q(', size(q, 1), ',', size(q, 2), ') and v(', size(v, 1), ',', size(v, 2), ')'
-        s = trim(buf)
     end function shape_text
 
 end module fsym_integrator
