@@ -3,9 +3,10 @@
 !>
 !> A file is created under a temporary name in the target's directory and renamed to its
 !> path only by a successful `close`; `abort`, a failed write (at once, so that a program
-!> that ends on the error leaves nothing) or a failed close delete the temporary, so a kill or a failure mid-way never leaves a partial file under the final
-!> name. Objects are named by their path in the file (`'particles/FR/position/value'`);
-!> missing parent groups are created. Datasets: `real(wp)` rank 1-3, default integer and
+!> that ends on the error leaves nothing) or a failed close delete the temporary, so a kill
+!> or a failure mid-way never leaves a partial file under the final name. Objects are named
+!> by their path in the file (`'particles/FR/position/value'`); missing parent groups are
+!> created. Datasets: `real(wp)` rank 1-3, default integer and
 !> `integer(ik)` rank 1, written whole (`write`, H5LT) or appended in slabs along the last
 !> Fortran dimension (`append`: chunked, extendible). Attributes on the file (`'/'`), groups
 !> and datasets: string, string 1D, real and integer scalars and 1D. Text outputs take the
@@ -107,10 +108,12 @@ contains
         use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
         character(len=*), intent(in) :: program     !! program name
         character(len=*), intent(in) :: text        !! the message
-        integer :: ios
-        write (error_unit, '(a)', iostat=ios) program//': '//trim(text)
-        flush (output_unit, iostat=ios)
-        flush (error_unit, iostat=ios)
+        integer :: ios1, ios2, ios3
+        ! each may fail on a full disk; nothing more can be done then, the exit status says it
+        write (error_unit, '(a)', iostat=ios1) program//': '//trim(text)
+        flush (output_unit, iostat=ios2)
+        flush (error_unit, iostat=ios3)
+        if (ios1 /= 0 .or. ios2 /= 0 .or. ios3 /= 0) continue
         call c_exit_now(1_c_int)
     end subroutine fsym_exit_failure
 

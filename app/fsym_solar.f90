@@ -234,6 +234,7 @@ contains
             close (u, iostat=ios)
         else
             close (u, status='delete', iostat=b)
+            if (b /= 0) continue        ! removed below in any case
         end if
         if (ios /= 0) then
             call fsym_remove_file(tmp)

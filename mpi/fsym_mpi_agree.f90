@@ -77,8 +77,9 @@ contains
         call MPI_Comm_rank(self%comm, self%rank, ierr)
         msg = ''
         call self%it%init_by_name(name, model, d, n, st, msg)
-        if (st == FSYM_SUCCESS .and. .not. (h /= 0.0_wp .and. abs(h) <= huge(h))) &
+        if (st == FSYM_SUCCESS .and. .not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
             st = FSYM_ERR_BAD_STEP
+        end if
         hb = 0; mh = 0
         if (st == FSYM_SUCCESS) then
             hb = transfer(h, hb); mh = method_hash(self%it%scheme())
@@ -170,7 +171,8 @@ contains
             if (code /= FSYM_SUCCESS) then
                 if (st == FSYM_SUCCESS) call self%it%undo_step(q, v)
                 call report(code, r, st, 'step '//fsym_int_text(self%it%steps() + 1)// &
-                            ' undone on every rank'); return
+                            ' undone on every rank')
+                return
             end if
         end do
         if (present(stat)) stat = FSYM_SUCCESS

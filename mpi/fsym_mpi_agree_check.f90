@@ -1,35 +1,3 @@
-!> Test model of the agreement check: the distributed model with a rank that fails.
-module fsym_mpi_agree_models
-    use fsym_kinds, only: wp
-    use fsym_status, only: FSYM_ERR_MODEL
-    use fsym_mpi_nbody, only: mpi_nbody_model_t
-    implicit none
-    private
-
-    !> `mpi_nbody_model_t` whose rank `fail_rank` fails at its `fail_at`-th force evaluation.
-    type, extends(mpi_nbody_model_t), public :: odd_model_t
-        integer :: fail_rank = -1   !! the rank that fails
-        integer :: fail_at = 0      !! at which of its force evaluations
-        integer :: evals = 0        !! force evaluations so far
-    contains
-        procedure :: local_acceleration => odd_local_acceleration
-    end type odd_model_t
-
-contains
-
-    !> The library's local force, except on the chosen rank at the chosen evaluation.
-    subroutine odd_local_acceleration(self, qall, a, stat)
-        class(odd_model_t), intent(inout) :: self      !! the model
-        real(wp), intent(in) :: qall(:, :)             !! positions of all bodies
-        real(wp), intent(out) :: a(:, :)               !! own accelerations
-        integer, intent(inout) :: stat                 !! set on the chosen evaluation
-        self%evals = self%evals + 1
-        call self%mpi_nbody_model_t%local_acceleration(qall, a, stat)
-        if (self%rank == self%fail_rank .and. self%evals == self%fail_at) stat = FSYM_ERR_MODEL
-    end subroutine odd_local_acceleration
-
-end module fsym_mpi_agree_models
-
 !> Agreement of the ranks (issue 23): one rank differs from the others, and every rank must
 !> return the same status, promptly (CTest gives each case a timeout of seconds: before the
 !> agreement, `case=nan` hung in the model's gather).
@@ -50,11 +18,11 @@ program fsym_mpi_agree_check
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use fsym
     use fsym_mpi_agree, only: mpi_integrator_t
-    use fsym_mpi_agree_models, only: odd_model_t
+    use fsym_mpi_driver_models, only: failing_model_t
     use fsym_scale_setup, only: scale_initial_state, scale_counts, scale_arg_int, &
                                 scale_arg_text, SCALE_EPS
     implicit none
-    type(odd_model_t) :: model
+    type(failing_model_t) :: model
     type(mpi_integrator_t) :: mi
     real(wp), allocatable :: q(:, :), v(:, :), m(:), ql(:, :), vl(:, :), q0(:, :), v0(:, :)
     integer, allocatable :: counts(:)

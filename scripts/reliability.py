@@ -219,8 +219,12 @@ def main():
                            ("refused" if st == "20" else "st %s, dE %s" % (st, de)))
             out.append("| %s | %s |" % (m, " | ".join(row)))
         misses = sum(1 for w in scan if w[5] == "miss")
-        out.append("\n%d runs, %d refused by the guard, **%d misses**.\n"
-                   % (len(scan), sum(1 for w in scan if w[3] == "20"), misses))
+        out.append("\n%d runs, %d refused by the guard, %d completed with |dE/E| <= 1e-2, "
+                   "**%d misses**. Every step size up to P/2e6 has h omega beyond x* at the "
+                   "pericentre (h omega = 4.4 at P/2e6), so the guard must refuse them all; "
+                   "P/1e7 is below x* all along and runs through.\n"
+                   % (len(scan), sum(1 for w in scan if w[3] == "20"),
+                      sum(1 for w in scan if w[3] == "0" and w[5] == "ok"), misses))
 
     if a.mpi:
         rows = read_lines(a.mpi) if a.mpi else []

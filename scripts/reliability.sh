@@ -13,6 +13,8 @@
 # ~/.cache/forward-symplectic/pfunit). Exits non-zero when a suite fails.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+venv=${FSYM_VENV:-$HOME/.cache/forward-symplectic/venv}
+[ -x "$venv/bin/fpm" ] && PATH="$venv/bin:$PATH"      # fpm of scripts/setup.sh
 cases=${1:-2000}
 seed=${2:-20261123}
 pfunit=${PFUNIT_DIR:-$HOME/.cache/forward-symplectic/pfunit}
@@ -68,7 +70,8 @@ if(FSYM_EXTRAS)
                     $root/mpi/fsym_mpi_agree.f90)
         target_compile_options(fsym_mpi PRIVATE -ffp-contract=off)
         target_link_libraries(fsym_mpi PUBLIC fsym MPI::MPI_Fortran)
-        add_executable(fsym_mpi_agree_check $root/mpi/fsym_mpi_agree_check.f90)
+        add_executable(fsym_mpi_agree_check $root/mpi/fsym_mpi_agree_check.f90
+            $root/mpi/fsym_mpi_test_models.f90)
         target_link_libraries(fsym_mpi_agree_check PRIVATE fsym_mpi)
     endif()
 endif()

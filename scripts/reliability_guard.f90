@@ -13,8 +13,9 @@ program reliability_guard
     type(kepler_model_t) :: kep
     real(wp) :: q0(2), v0(2), qa(2, 1), va(2, 1), q(2, 1), v(2, 1), period, h, e0, du, dg
     real(wp) :: t, r, hw, xs
-    real(wp), parameter :: nper(9) = [1.0e3_wp, 2.0e3_wp, 5.0e3_wp, 1.0e4_wp, 2.0e4_wp, &
-                                      1.0e5_wp, 2.0e5_wp, 1.0e6_wp, 2.0e6_wp]
+    ! the 45 runs of the issue's scan, and P/1e7, where h omega stays below x* all along
+    real(wp), parameter :: nper(10) = [1.0e3_wp, 2.0e3_wp, 5.0e3_wp, 1.0e4_wp, 2.0e4_wp, &
+                                       1.0e5_wp, 2.0e5_wp, 1.0e6_wp, 2.0e6_wp, 1.0e7_wp]
     integer :: k, st, su, p1, p2, j
     character(len=512) :: msg
     call kepler_elliptic_orbit(0.9999_wp, q0, v0, period, st)

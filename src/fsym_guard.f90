@@ -134,7 +134,7 @@ contains
         class(force_model_t), intent(inout), target :: model     !! the user's model
         type(kernel_state_t), intent(inout) :: ks                !! kernel state
         real(wp), intent(inout), contiguous :: q(:, :), v(:, :)  !! state
-        real(wp), intent(inout) :: w(*)                          !! kernel work array
+        real(wp), intent(inout), contiguous :: w(:)              !! kernel work array
         real(wp), intent(in) :: h                                !! step
         integer(ik), intent(in) :: nsteps                        !! steps to take
         integer(ik), intent(out) :: ndone                        !! steps taken

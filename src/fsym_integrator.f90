@@ -88,7 +88,8 @@ contains
 
         if (self%busy) then
             call fsym_report(FSYM_ERR_BUSY, 'init called from inside a step of the same '// &
-                             'integrator', stat, errmsg); return
+                             'integrator', stat, errmsg)
+            return
         end if
         if (d < 1 .or. n < 1) then
             call fsym_report(FSYM_ERR_SHAPE, 'need d >= 1 and n >= 1', stat, errmsg); return

@@ -17,7 +17,7 @@
 !>              IW, or a changed coefficient, is refused on entry: INFO = 9)
 !>     IW(K+4)  guard word LEGACY_GUARD (an overrun of IW, or a shorter IW, is refused)
 module fsym_legacy_work
-    use, intrinsic :: iso_fortran_env, only: int32, int64
+    use, intrinsic :: iso_fortran_env, only: int64
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_UNKNOWN_METHOD, FSYM_ERR_SHAPE, &
                            FSYM_ERR_WORK_SIZE, FSYM_ERR_NOT_INITIALIZED, FSYM_ERR_BUSY
     use fsym_kinds, only: wp, ik
@@ -33,6 +33,7 @@ module fsym_legacy_work
     use fsym_status, only: FSYM_ERR_BAD_REQUEST, FSYM_ERR_BAD_ARGUMENT, FSYM_ERR_NO_GRADIENT
     use fsym_scheme, only: OP_GRAD_KICK
     use fsym_oscillator, only: fsym_stability_interval
+    use fsym_checkpoint, only: fsym_crc32_table, fsym_crc32_feed, CRC_ONES
     implicit none
     private
 
@@ -174,41 +175,21 @@ contains
         integer, intent(in) :: liw, lrw
         integer, intent(in) :: iw(liw)
         real(wp), intent(in) :: rw(lrw)
-        integer(int64) :: table(0:255), t, crc
-        integer(int64), parameter :: poly = int(z'EDB88320', int64), ones = int(z'FFFFFFFF', int64)
-        integer :: j, b, k, nop
-        do j = 0, 255
-            t = j
-            do b = 1, 8
-                if (btest(t, 0)) then
-                    t = ieor(shiftr(t, 1), poly)
-                else
-                    t = shiftr(t, 1)
-                end if
-            end do
-            table(j) = t
-        end do
+        integer(int64) :: table(0:255), crc, t
+        integer :: j, k, nop
+        table = fsym_crc32_table()
         nop = iw(4); k = LEGACY_KO + nop
-        crc = ones
+        crc = CRC_ONES
         do j = 1, k + 4
             if (j == k + 3) cycle
-            crc = feed(crc, int(iw(j), int64), 4)
+            crc = fsym_crc32_feed(crc, int(iw(j), int64), 4, table)
         end do
         do j = LEGACY_KC, LEGACY_KC + 2 * nop - 1
-            crc = feed(crc, transfer(rw(j), t), 8)
+            crc = fsym_crc32_feed(crc, transfer(rw(j), t), 8, table)
         end do
-        crc = ieor(crc, ones)
-        c = transfer(int(crc, int32), c)
-    contains
-        pure integer(int64) function feed(c0, word, nbytes) result(c1)
-            integer(int64), intent(in) :: c0, word
-            integer, intent(in) :: nbytes
-            integer :: q
-            c1 = c0
-            do q = 0, 8 * nbytes - 8, 8
-                c1 = ieor(table(iand(ieor(c1, shiftr(word, q)), 255_int64)), shiftr(c1, 8))
-            end do
-        end function feed
+        crc = ieor(crc, CRC_ONES)
+        if (crc > huge(c)) crc = crc - 4294967296_int64     ! as a signed 32-bit word
+        c = int(crc)
     end function work_crc
 
     !> True when `iw` was set up by FSYMIN for (nd, n) and the lengths suffice.
