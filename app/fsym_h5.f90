@@ -2,10 +2,11 @@
 !> suffices. Every HDF5 call's status becomes `stat`/`errmsg` (`FSYM_ERR_IO`).
 !>
 !> A file is created under a temporary name in the target's directory and renamed to its
-!> path only by a successful `close`; `abort`, a failed write or a failed close delete the
-!> temporary, so a kill or a failure mid-way never leaves a partial file under the final
-!> name. Objects are named by their path in the file (`'particles/FR/position/value'`);
-!> missing parent groups are created. Datasets: `real(wp)` rank 1-3, default integer and
+!> path only by a successful `close`; `abort`, a failed write (at once, so that a program
+!> that ends on the error leaves nothing) or a failed close delete the temporary, so a kill
+!> or a failure mid-way never leaves a partial file under the final name. Objects are named
+!> by their path in the file (`'particles/FR/position/value'`); missing parent groups are
+!> created. Datasets: `real(wp)` rank 1-3, default integer and
 !> `integer(ik)` rank 1, written whole (`write`, H5LT) or appended in slabs along the last
 !> Fortran dimension (`append`: chunked, extendible). Attributes on the file (`'/'`), groups
 !> and datasets: string, string 1D, real and integer scalars and 1D. Text outputs take the
@@ -22,7 +23,7 @@ module fsym_h5
 
     public :: h5_file_t, fsym_rename_file, fsym_check_writable, fsym_temp_name
     public :: fsym_h5_safe_name, fsym_open_text, fsym_commit_text, fsym_h5md_header
-    public :: fsym_make_dir
+    public :: fsym_make_dir, fsym_exit_failure, fsym_remove_file
 
     !> An HDF5 file being written (through a temporary name).
     type :: h5_file_t
@@ -56,6 +57,11 @@ module fsym_h5
             character(kind=c_char), intent(in) :: name(*)
             integer(c_int) :: r
         end function c_remove
+        subroutine c_exit_now(code) bind(C, name='_exit')
+            import :: c_int
+            implicit none
+            integer(c_int), value :: code
+        end subroutine c_exit_now
         function c_getpid() bind(C, name='getpid') result(r)
             import :: c_int
             implicit none
@@ -81,6 +87,10 @@ contains
         character(len=*), intent(inout) :: errmsg   !! message on error
         bad = ierr < 0 .or. self%id < 0
         if (bad) then
+            ! the temporary goes at once (a program may end before `close`: a full disk)
+            if (.not. self%failed .and. allocated(self%tmp)) then
+                if (c_remove(self%tmp//c_null_char) /= 0) continue
+            end if
             self%failed = .true.
             call fsym_report(FSYM_ERR_IO, what//' failed (HDF5 file '//self%tmp//')', &
                              stat, errmsg)
@@ -88,6 +98,30 @@ contains
             stat = FSYM_SUCCESS
         end if
     end function bad
+
+    !> End a program that failed: the message on standard error, both standard units flushed
+    !> (a buffered standard error that is a file would otherwise lose it), then exit status 1
+    !> at once (`_exit`), without the exit handlers: after a write failed on a full disk,
+    !> HDF5's own handler flushes the failed file again and crashes (SIGSEGV at exit, HDF5
+    !> 1.10). Temporaries must be removed before (every writer here does on failure).
+    subroutine fsym_exit_failure(program, text)
+        use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+        character(len=*), intent(in) :: program     !! program name
+        character(len=*), intent(in) :: text        !! the message
+        integer :: ios1, ios2, ios3
+        ! each may fail on a full disk; nothing more can be done then, the exit status says it
+        write (error_unit, '(a)', iostat=ios1) program//': '//trim(text)
+        flush (output_unit, iostat=ios2)
+        flush (error_unit, iostat=ios3)
+        if (ios1 /= 0 .or. ios2 /= 0 .or. ios3 /= 0) continue
+        call c_exit_now(1_c_int)
+    end subroutine fsym_exit_failure
+
+    !> Remove a file if it exists (no error when it does not).
+    subroutine fsym_remove_file(path)
+        character(len=*), intent(in) :: path        !! the file
+        if (c_remove(trim(path)//c_null_char) /= 0) continue
+    end subroutine fsym_remove_file
 
     !> The temporary name used while writing `path`: same directory, `.<pid>.part` appended.
     function fsym_temp_name(path) result(tmp)

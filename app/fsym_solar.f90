@@ -10,12 +10,13 @@
 !>   --resume FILE         go on from a checkpoint: bitwise the run that was interrupted
 !>   --end-states FILE     write the end states and counts as hex images (for bitwise tests)
 program fsym_solar
-    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
+    use, intrinsic :: iso_fortran_env, only: output_unit, int64
     use fsym
     use fsym_solar_data, only: solar_data_t, read_solar_data
     use fsym_solar_output, only: solar_results_t, write_solar_h5
     use fsym_checkpoint_h5, only: fsym_ckpt_h5_write, fsym_ckpt_h5_read
-    use fsym_h5, only: fsym_rename_file, fsym_check_writable
+    use fsym_h5, only: fsym_rename_file, fsym_check_writable, fsym_exit_failure, &
+                       fsym_temp_name, fsym_remove_file
     implicit none
     character(len=4), parameter :: methods(6) = [character(len=4) :: 'FR', 'A', 'A''', 'C', &
                                                  'A6', 'BM']
@@ -104,6 +105,10 @@ program fsym_solar
         if (size(prog) /= 5 .or. size(packed) /= size(pack_results())) then
             call fail('checkpoint '//trim(resume_path)//' is not of this run')
         end if
+        if (.not. (prog(1) >= 1 .and. prog(1) <= size(methods) .and. prog(2) >= 1 .and. &
+                   prog(2) <= size(steps) .and. prog(3) >= 1 .and. prog(3) < 1.0e9_wp)) then
+            call fail('checkpoint '//trim(resume_path)//' refused: progress out of range')
+        end if
         call unpack_results(packed)
     end if
 
@@ -157,7 +162,12 @@ program fsym_solar
 
     if (len_trim(ends_path) > 0) call write_end_states(trim(ends_path))
     call write_solar_h5(trim(h5_path), trim(data_path), res, FSYM_VERSION, st, msg)
-    if (st /= 0) call fail(msg)
+    if (st /= 0) then
+        if (every > 0) call fail(trim(msg)//'; the last checkpoint '//trim(ckpt_path)// &
+                                 ' is kept: free space and run again with --resume '// &
+                                 trim(ckpt_path))
+        call fail(msg)
+    end if
     write (output_unit, '(a)') 'wrote '//trim(h5_path)
 
 contains
@@ -206,25 +216,39 @@ contains
     subroutine write_end_states(path)
         character(len=*), intent(in) :: path
         integer :: u, ios, a, b
-        open (newunit=u, file=path//'.part', action='write', status='replace', iostat=ios)
-        if (ios /= 0) call fail('cannot write '//path//'.part')
+        character(len=:), allocatable :: tmp
+        tmp = fsym_temp_name(path)
+        open (newunit=u, file=tmp, action='write', status='replace', iostat=ios)
+        if (ios /= 0) call fail('cannot write '//tmp)
         do a = 1, size(methods)
             do b = 1, size(steps)
-                write (u, '(a,1x,f0.1,1x,z16.16,2(1x,i0),*(1x,z16.16))') trim(methods(a)), &
-                    steps(b), transfer(res%err_energy(a, b), 0_int64), res%nforce(a, b), &
-                    res%ngrad(a, b), transfer(res%q_end(:, :, a, b), [0_int64]), &
+                if (ios /= 0) exit
+                write (u, '(a,1x,f0.1,1x,z16.16,2(1x,i0),*(1x,z16.16))', iostat=ios) &
+                    trim(methods(a)), steps(b), transfer(res%err_energy(a, b), 0_int64), &
+                    res%nforce(a, b), res%ngrad(a, b), &
+                    transfer(res%q_end(:, :, a, b), [0_int64]), &
                     transfer(res%v_end(:, :, a, b), [0_int64])
             end do
         end do
-        close (u)
-        call fsym_rename_file(path//'.part', path, st, msg)
+        if (ios == 0) then
+            close (u, iostat=ios)
+        else
+            close (u, status='delete', iostat=b)
+            if (b /= 0) continue        ! removed below in any case
+        end if
+        if (ios /= 0) then
+            call fsym_remove_file(tmp)
+            call fail('cannot write '//path//' (disk full?); its temporary removed')
+        end if
+        call fsym_rename_file(tmp, path, st, msg)
         if (st /= 0) call fail(msg)
     end subroutine write_end_states
 
+    !> Report and exit with status 1 (flushed, without the exit handlers: see
+    !> `fsym_exit_failure`); every writer has removed its temporary before.
     subroutine fail(text)
         character(len=*), intent(in) :: text
-        write (error_unit, '(a)') 'fsym-solar: '//trim(text)
-        error stop 1
+        call fsym_exit_failure('fsym-solar', text)
     end subroutine fail
 
 end program fsym_solar

@@ -6,10 +6,10 @@
 !> scripts/report_results.py). Arithmetic comes from the library; this module only drives
 !> it. Scenes share no module variables: the run's settings travel in a `study_t`.
 module fsym_study_scenes
-    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+    use, intrinsic :: iso_fortran_env, only: output_unit
     use fsym
     use fsym_h5, only: h5_file_t, fsym_h5_safe_name, fsym_h5md_header, fsym_make_dir, &
-                       fsym_check_writable
+                       fsym_check_writable, fsym_exit_failure
     use fsym_diagnostics, only: coefficient_tracker_t
     implicit none
     private
@@ -112,8 +112,7 @@ contains
     !> Stop the program with a message (programs only; the library never stops).
     subroutine study_die(text)
         character(len=*), intent(in) :: text  !! the message
-        write (error_unit, '(a)') 'fsym-study: '//text
-        error stop 1
+        call fsym_exit_failure('fsym-study', text)    ! flushed, exit 1, no crash at exit
     end subroutine study_die
 
     !> Stop with the message when a status is non-zero.

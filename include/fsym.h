@@ -37,7 +37,8 @@ enum {
     FSYM_ERR_CHECKPOINT = 21,        /* checkpoint corrupt, other version, or not fitting */
     FSYM_ERR_CONVENTION = 22,        /* F77 caller with non-default integer size */
     FSYM_ERR_NO_MEMORY = 23,         /* an allocation failed (e.g. a huge method table) */
-    FSYM_ERR_LAST = 23               /* largest code in use */
+    FSYM_ERR_BUSY = 24,              /* integrator called from its own callback */
+    FSYM_ERR_LAST = 24               /* largest code in use */
 };
 
 /* Longest method label accepted (longer ones: FSYM_ERR_BAD_ARGUMENT, never cut). */
@@ -110,7 +111,23 @@ int fsym_checkpoint_load(fsym_integrator *handle, double *q, double *v, const do
 /* Force and gradient evaluations so far (a NULL pointer is skipped). */
 int fsym_counts(const fsym_integrator *handle, long long *nforce, long long *ngrad);
 
-/* Free the integrator (NULL is ignored). */
+/* Largest local omega^2 at q (e.g. 2 G (m_i + m_j) / r_ij^3 over the pairs) and the
+ * distance r where it occurs; return non-zero to report a failure. */
+typedef int (*fsym_freq_fn)(int d, int n, const double *q, double *omega2, double *r,
+                            void *user);
+
+/* The step-size guard: every step is checked at its start, at every drift (end point and
+ * chord) and at its end against fraction * x* (x*: the method's stability limit; fraction
+ * <= 0 means 1); a step beyond it is refused with FSYM_ERR_STEP_TOO_LARGE and q, v of the
+ * last step taken. freq NULL turns the guard off. */
+int fsym_set_guard(fsym_integrator *handle, fsym_freq_fn freq, double fraction);
+
+/* Calls from inside a callback on the integrator that called it (fsym_step,
+ * checkpoints) are refused with FSYM_ERR_BUSY; q and v that share memory with
+ * FSYM_ERR_BAD_ARGUMENT. */
+
+/* Free the integrator (NULL is ignored; ignored from inside its own callback; a handle
+ * already destroyed is ignored while its memory is not reused, but set it to NULL). */
 void fsym_destroy(fsym_integrator *handle);
 
 /* NUL-terminated text of a status code in buf (at most len bytes). */

@@ -11,7 +11,8 @@ module fsym_capi
                                            c_associated, c_f_pointer, c_f_procpointer, c_loc
     use fsym_kinds, only: wp, ik
     use fsym_status, only: fsym_status_message, FSYM_SUCCESS, FSYM_ERR_BAD_ARGUMENT, &
-                           FSYM_ERR_NO_GRADIENT, FSYM_ERR_NOT_INITIALIZED, FSYM_ERR_CAPACITY
+                           FSYM_ERR_NO_GRADIENT, FSYM_ERR_NOT_INITIALIZED, FSYM_ERR_CAPACITY, &
+                           FSYM_ERR_BUSY
     use fsym_force, only: force_model_t
     use fsym_integrator, only: integrator_t
     use fsym_stepper, only: observer_t
@@ -22,6 +23,7 @@ module fsym_capi
     public :: fsym_c_steps_done, fsym_c_last_message, fsym_c_reset_cache
     public :: fsym_c_checkpoint_length, fsym_c_checkpoint_save, fsym_c_checkpoint_load
     public :: fsym_c_time, fsym_c_run_to, fsym_c_set_observer
+    public :: fsym_c_set_guard
 
     !> Longest method label read from C (longer ones are refused, never cut).
     integer, parameter, public :: FSYM_C_NAME_MAX = 256
@@ -58,17 +60,30 @@ module fsym_capi
             real(c_double), intent(out) :: g(*)
             type(c_ptr), value :: user
         end function c_grad_iface
+        !> C local-frequency callback: `int freq(int d, int n, const double *q,
+        !> double *omega2, double *r, void *user)`; non-zero return = failure.
+        integer(c_int) function c_freq_iface(d, n, q, omega2, r, user) bind(C)
+            import :: c_int, c_double, c_ptr
+            implicit none
+            integer(c_int), value :: d, n
+            real(c_double), intent(in) :: q(*)
+            real(c_double), intent(out) :: omega2, r
+            type(c_ptr), value :: user
+        end function c_freq_iface
     end interface
 
     !> A force model calling C function pointers with the caller's user data.
     type, extends(force_model_t) :: c_model_t
         type(c_funptr) :: accel = c_null_funptr   ! C function pointers, converted at the call
         type(c_funptr) :: grad = c_null_funptr
+        type(c_funptr) :: freq = c_null_funptr    ! local frequency (the guard), or NULL
         type(c_ptr) :: user = c_null_ptr
     contains
         procedure :: acceleration => c_model_acceleration
         procedure :: gradient => c_model_gradient
         procedure :: has_gradient => c_model_has_gradient
+        procedure :: local_frequency => c_model_frequency
+        procedure :: has_frequency => c_model_has_frequency
     end type c_model_t
 
     !> An observer calling a C function pointer with the caller's user data.
@@ -80,8 +95,12 @@ module fsym_capi
         procedure :: observe => c_observer_observe
     end type c_observer_t
 
+    !> The first component of a live handle; `fsym_destroy` overwrites it.
+    integer(c_int), parameter :: LIVE = 1718837608, DEAD = 1684366433
+
     !> What a C handle points to.
     type :: c_handle_t
+        integer(c_int) :: magic = LIVE        ! LIVE until destroyed
         type(integrator_t) :: it
         type(c_model_t) :: model
         type(c_observer_t) :: obs
@@ -115,6 +134,62 @@ contains
         call c_f_procpointer(self%grad, f)
         stat = int(f(int(size(q, 1), c_int), int(size(q, 2), c_int), q, a, g, self%user))
     end subroutine c_model_gradient
+
+    subroutine c_model_frequency(self, q, omega2, r, stat)
+        class(c_model_t), intent(inout) :: self
+        real(wp), intent(in), contiguous :: q(:, :)
+        real(wp), intent(out) :: omega2, r
+        integer, intent(inout) :: stat
+        procedure(c_freq_iface), pointer :: f
+        omega2 = 0.0_wp; r = 0.0_wp
+        if (.not. c_associated(self%freq)) then
+            stat = 1; return
+        end if
+        call c_f_procpointer(self%freq, f)
+        stat = int(f(int(size(q, 1), c_int), int(size(q, 2), c_int), q, omega2, r, self%user))
+    end subroutine c_model_frequency
+
+    logical function c_model_has_frequency(self)
+        class(c_model_t), intent(in) :: self
+        c_model_has_frequency = c_associated(self%freq)
+    end function c_model_has_frequency
+
+    !> `int fsym_set_guard(fsym_integrator *handle, fsym_freq_fn freq, double fraction)`:
+    !> the step-size guard (as `integrator_t%set_guard`) with the caller's local frequency
+    !> `freq` (largest omega^2 at q and the distance where it occurs); `fraction` of x*
+    !> (<= 0: 1). A NULL `freq` turns the guard off. Refused steps: FSYM_ERR_STEP_TOO_LARGE.
+    integer(c_int) function fsym_c_set_guard(handle, freq, fraction) &
+        bind(C, name='fsym_set_guard') result(stat)
+        type(c_ptr), value :: handle          !! integrator
+        type(c_funptr), value :: freq         !! local-frequency callback, or NULL
+        real(c_double), value :: fraction     !! of x* (<= 0: 1)
+        type(c_handle_t), pointer :: p
+        integer :: st
+        stat = FSYM_ERR_NOT_INITIALIZED
+        if (.not. live_handle(handle, p)) return
+        p%msg = ''
+        if (.not. c_associated(freq)) then
+            call p%it%set_guard(p%model, .false., st, p%msg)
+        else
+            p%model%freq = freq
+            if (fraction > 0.0_wp) then
+                call p%it%set_guard(p%model, .true., st, p%msg, real(fraction, wp))
+            else
+                call p%it%set_guard(p%model, .true., st, p%msg)
+            end if
+        end if
+        stat = int(st, c_int)
+    end function fsym_c_set_guard
+
+    !> The handle behind a C pointer when it is a live one (not NULL, not destroyed).
+    logical function live_handle(handle, p)
+        type(c_ptr), intent(in) :: handle
+        type(c_handle_t), pointer, intent(out) :: p
+        live_handle = .false.; p => null()
+        if (.not. c_associated(handle)) return
+        call c_f_pointer(handle, p)
+        live_handle = p%magic == LIVE
+    end function live_handle
 
     logical function c_model_has_gradient(self)
         class(c_model_t), intent(in) :: self
@@ -171,6 +246,7 @@ contains
             stat = int(st, c_int); return
         end if
         p%d = d; p%n = n
+        p%magic = LIVE
         out = c_loc(p)
         stat = FSYM_SUCCESS
     end function fsym_c_create
@@ -199,10 +275,13 @@ contains
         real(wp), pointer, contiguous :: qf(:, :), vf(:, :)
         integer(ik) :: before
         integer :: st
-        if (.not. c_associated(handle)) then
+        if (.not. live_handle(handle, p)) then
             stat = FSYM_ERR_NOT_INITIALIZED; return
         end if
-        call c_f_pointer(handle, p)
+        if (p%it%in_use()) then
+            ! called from its own callback: refused without touching the handle
+            stat = FSYM_ERR_BUSY; return
+        end if
         p%last_done = 0
         if (.not. (c_associated(q) .and. c_associated(v)) .or. (nstep < 1 .and. .not. to)) then
             p%msg = 'fsym_step, fsym_run_to: q and v must not be NULL, nstep must be >= 1'
@@ -299,8 +378,7 @@ contains
         type(c_handle_t), pointer :: p
         integer(c_long_long), pointer :: x
         stat = FSYM_ERR_NOT_INITIALIZED
-        if (.not. c_associated(handle)) return
-        call c_f_pointer(handle, p)
+        if (.not. live_handle(handle, p)) return
         if (c_associated(last)) then
             call c_f_pointer(last, x); x = int(p%last_done, c_long_long)
         end if
@@ -320,8 +398,7 @@ contains
         integer(c_int), value :: buflen       !! size of buf in bytes
         type(c_handle_t), pointer :: p
         stat = FSYM_ERR_NOT_INITIALIZED
-        if (.not. c_associated(handle)) return
-        call c_f_pointer(handle, p)
+        if (.not. live_handle(handle, p)) return
         stat = FSYM_ERR_BAD_ARGUMENT
         if (.not. c_associated(buf) .or. buflen < 1) return
         call copy_text(trim(p%msg), buf, buflen)
@@ -335,8 +412,7 @@ contains
         type(c_ptr), value :: handle          !! integrator
         type(c_handle_t), pointer :: p
         stat = FSYM_ERR_NOT_INITIALIZED
-        if (.not. c_associated(handle)) return
-        call c_f_pointer(handle, p)
+        if (.not. live_handle(handle, p)) return
         call p%it%reset_cache()
         stat = FSYM_SUCCESS
     end function fsym_c_reset_cache
@@ -350,8 +426,7 @@ contains
         type(c_handle_t), pointer :: p
         integer(c_long_long), pointer :: x
         stat = FSYM_ERR_NOT_INITIALIZED
-        if (.not. c_associated(handle)) return
-        call c_f_pointer(handle, p)
+        if (.not. live_handle(handle, p)) return
         stat = FSYM_ERR_BAD_ARGUMENT
         if (.not. c_associated(length)) return
         call c_f_pointer(length, x)
@@ -392,8 +467,7 @@ contains
         real(wp), pointer, contiguous :: qf(:, :), vf(:, :), c(:)
         integer :: st
         stat = FSYM_ERR_NOT_INITIALIZED
-        if (.not. c_associated(handle)) return
-        call c_f_pointer(handle, p)
+        if (.not. live_handle(handle, p)) return
         stat = FSYM_ERR_BAD_ARGUMENT
         if (.not. (c_associated(q) .and. c_associated(v) .and. c_associated(ck)) .or. &
             length < 0) return
@@ -433,8 +507,7 @@ contains
         type(c_handle_t), pointer :: p
         integer(c_long_long), pointer :: x
         stat = FSYM_ERR_NOT_INITIALIZED
-        if (.not. c_associated(handle)) return
-        call c_f_pointer(handle, p)
+        if (.not. live_handle(handle, p)) return
         if (c_associated(nforce)) then
             call c_f_pointer(nforce, x); x = int(p%it%force_evaluations(), c_long_long)
         end if
@@ -445,11 +518,15 @@ contains
     end function fsym_c_counts
 
     !> `void fsym_destroy(fsym_integrator *handle)`: free the integrator (NULL is ignored).
+    !> Ignored while a step of it is in progress (called from its own callback). A handle
+    !> already destroyed is recognised while its memory is not reused (its first word no
+    !> longer LIVE) and ignored; do not rely on it: set the pointer to NULL after the call.
     subroutine fsym_c_destroy(handle) bind(C, name='fsym_destroy')
         type(c_ptr), value :: handle   !! integrator
         type(c_handle_t), pointer :: p
-        if (.not. c_associated(handle)) return
-        call c_f_pointer(handle, p)
+        if (.not. live_handle(handle, p)) return
+        if (p%it%in_use()) return
+        p%magic = DEAD
         call p%it%destroy()
         deallocate (p)
     end subroutine fsym_c_destroy

@@ -40,7 +40,9 @@ module fsym_checkpoint
     end type ckpt_clock_t
 
     public :: fsym_checkpoint_length, fsym_checkpoint_pack, fsym_checkpoint_unpack
-    public :: fsym_crc32
+    public :: fsym_crc32, fsym_crc32_table, fsym_crc32_feed
+    integer(int64), parameter, public :: CRC_ONES = int(z'FFFFFFFF', int64)
+        !! start and final xor of a CRC-32
 
 contains
 
@@ -179,9 +181,21 @@ contains
     !> each value first, as a non-negative integer below 2**32.
     pure integer(int64) function fsym_crc32(x) result(crc)
         real(wp), intent(in) :: x(:)   !! the values
-        integer(int64) :: table(0:255), t, word
-        integer(int64), parameter :: poly = int(z'EDB88320', int64), ones = int(z'FFFFFFFF', int64)
+        integer(int64) :: table(0:255), word
         integer(ik) :: i
+        table = fsym_crc32_table()
+        crc = CRC_ONES
+        do i = 1, size(x, kind=ik)
+            crc = fsym_crc32_feed(crc, transfer(x(i), word), 8, table)
+        end do
+        crc = ieor(crc, CRC_ONES)
+    end function fsym_crc32
+
+    !> The byte table of CRC-32 (reflected polynomial 0xEDB88320), for `fsym_crc32_feed`.
+    pure function fsym_crc32_table() result(table)
+        integer(int64) :: table(0:255)     !! CRC of each byte value
+        integer(int64), parameter :: poly = int(z'EDB88320', int64)
+        integer(int64) :: t
         integer :: j, b
         do j = 0, 255
             t = j
@@ -194,14 +208,20 @@ contains
             end do
             table(j) = t
         end do
-        crc = ones
-        do i = 1, size(x, kind=ik)
-            word = transfer(x(i), word)
-            do b = 0, 56, 8
-                crc = ieor(table(iand(ieor(crc, shiftr(word, b)), 255_int64)), shiftr(crc, 8))
-            end do
+    end function fsym_crc32_table
+
+    !> A running CRC-32 (started at 2**32 - 1, finished by xor with it) after the `nbytes`
+    !> low bytes of `word`, low byte first.
+    pure integer(int64) function fsym_crc32_feed(crc, word, nbytes, table) result(c)
+        integer(int64), intent(in) :: crc            !! running CRC
+        integer(int64), intent(in) :: word           !! the bytes
+        integer, intent(in) :: nbytes                !! how many (1 to 8)
+        integer(int64), intent(in) :: table(0:255)   !! from `fsym_crc32_table`
+        integer :: b
+        c = crc
+        do b = 0, 8 * nbytes - 8, 8
+            c = ieor(table(iand(ieor(c, shiftr(word, b)), 255_int64)), shiftr(c, 8))
         end do
-        crc = ieor(crc, ones)
-    end function fsym_crc32
+    end function fsym_crc32_feed
 
 end module fsym_checkpoint

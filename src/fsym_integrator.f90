@@ -12,11 +12,13 @@ module fsym_integrator
                            fsym_kernel_invalidate, fsym_kernel_abort, fsym_kernel_slots, &
                            fsym_kernel_counts, fsym_kernel_stage
     use fsym_text, only: fsym_text_put, fsym_text_put_int
-    use fsym_guard, only: guard_t, fsym_guard_setup, fsym_guard_check, fsym_guard_message
+    use fsym_guard, only: guard_t, fsym_guard_setup, fsym_guard_message, fsym_guard_run
     use fsym_checkpoint, only: ckpt_clock_t, fsym_checkpoint_length, fsym_checkpoint_pack, &
                                fsym_checkpoint_unpack
     implicit none
     private
+
+    public :: fsym_overlap
 
     !> A splitting integrator: scheme + workspace + kernel state.
     type, extends(stepper_t), public :: integrator_t
@@ -30,6 +32,10 @@ module fsym_integrator
         logical :: ready = .false.
         logical :: needs_g = .false.        ! the scheme has gradient kicks
         type(guard_t) :: guard              ! the step-size guard (off by default)
+        logical :: busy = .false.           ! a step is in progress (re-entry is refused)
+        logical :: comp = .false.           ! compensated updates
+        logical :: can_undo = .false.       ! the last call was one completed `step`
+        type(ckpt_clock_t) :: clock0        ! the clock before it
     contains
         procedure :: init => integrator_init
             !! set up for a scheme, a model and arrays (d, n)
@@ -51,6 +57,10 @@ module fsym_integrator
             !! resume from a flat array: bitwise as if never interrupted
         procedure :: set_guard => integrator_set_guard
             !! turn the step-size guard on or off
+        procedure :: in_use => integrator_in_use
+            !! true while a step is in progress (inside the force model's calls)
+        procedure :: undo_step => integrator_undo_step
+            !! take back the step just completed by `step` (e.g. another MPI rank failed)
     end type integrator_t
 
 contains
@@ -76,6 +86,11 @@ contains
         character(len=256) :: msg
         logical :: comp
 
+        if (self%busy) then
+            call fsym_report(FSYM_ERR_BUSY, 'init called from inside a step of the same '// &
+                             'integrator', stat, errmsg)
+            return
+        end if
         if (d < 1 .or. n < 1) then
             call fsym_report(FSYM_ERR_SHAPE, 'need d >= 1 and n >= 1', stat, errmsg); return
         end if
@@ -121,6 +136,8 @@ contains
                                    s%ngrad, 0.0_wp)
         if (present(t0)) call self%set_time(t0)
         self%needs_g = s%needs_gradient()
+        self%comp = comp
+        self%can_undo = .false.
         self%guard%on = .false.             ! a new set-up starts unguarded
         self%ready = .true.
         if (present(stat)) stat = FSYM_SUCCESS
@@ -161,12 +178,56 @@ contains
         integer(ik) :: ndone
         integer :: st
         st = refusal(self, q, v)
-        if (st == FSYM_SUCCESS) call advance(self, model, q, v, h, 1_ik, ndone, st, recorder)
+        if (st == FSYM_SUCCESS) then
+            self%can_undo = .false.
+            call self%clock_state(self%clock0%t_base, self%clock0%h_now, &
+                                  self%clock0%k_since, self%clock0%steps, 0)
+            self%busy = .true.
+            call advance(self, model, q, v, h, 1_ik, ndone, st, recorder)
+            self%busy = .false.
+            self%can_undo = st == FSYM_SUCCESS
+        end if
         if (st /= FSYM_SUCCESS) then
             call report(self, q, v, st, stat, errmsg); return
         end if
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine integrator_step
+
+    !> Take back the step just completed by `step` (the last call on this integrator): q and
+    !> v as at its start (bitwise, from the copies the kernel keeps), the clock and the step
+    !> count as before it, the cached force forgotten; the evaluation counters keep the
+    !> evaluations made. For a caller that learns after the step that it must not stand (an
+    !> MPI rank whose step succeeded while another's failed). Only once, and only right after
+    !> `step` with the same q and v: otherwise FSYM_ERR_BAD_REQUEST and nothing changes.
+    subroutine integrator_undo_step(self, q, v, stat, errmsg)
+        class(integrator_t), intent(inout) :: self            !! the integrator
+        real(wp), intent(inout), contiguous :: q(:, :)        !! positions (d, n)
+        real(wp), intent(inout), contiguous :: v(:, :)        !! velocities (d, n)
+        integer, intent(out), optional :: stat                !! status code
+        character(len=*), intent(inout), optional :: errmsg   !! message on error
+        integer :: st
+        st = refusal(self, q, v)
+        if (st /= FSYM_SUCCESS) then
+            call report(self, q, v, st, stat, errmsg); return
+        end if
+        if (.not. self%can_undo) then
+            call fsym_report(FSYM_ERR_BAD_REQUEST, 'undo_step: the last call was not a '// &
+                             'completed step (or it was undone already)', stat, errmsg)
+            return
+        end if
+        call undo(self, q, v)
+        self%can_undo = .false.
+        call self%clock_state(self%clock0%t_base, self%clock0%h_now, self%clock0%k_since, &
+                              self%clock0%steps, 1)
+        if (present(stat)) stat = FSYM_SUCCESS
+    end subroutine integrator_undo_step
+
+    !> The kernel's undo on arrays of the integrator's shape.
+    subroutine undo(self, q, v)
+        class(integrator_t), intent(inout) :: self
+        real(wp), intent(inout) :: q(self%nd, self%nb), v(self%nd, self%nb)
+        call fsym_kernel_abort(self%ks, q, v, self%w(self%w0), completed=.true.)
+    end subroutine undo
 
     !> `nsteps` steps of size h; stops at the first failing step, leaving the state of the
     !> last good step (check `stat`; `steps()` tells how far it got). Bitwise the same as
@@ -188,6 +249,10 @@ contains
         integer(ik) :: left, chunk, ndone
         integer :: st
         logical :: stop
+        if (self%busy) then
+            call report(self, q, v, FSYM_ERR_BUSY, stat, errmsg); return
+        end if
+        self%can_undo = .false.
         call self%note_stop(.false.)
         if (nsteps < 1) then
             call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'run: nsteps = '//fsym_int_text(nsteps)// &
@@ -199,7 +264,9 @@ contains
             call report(self, q, v, st, stat, errmsg); return
         end if
         if (.not. present(observer)) then
+            self%busy = .true.
             call advance(self, model, q, v, h, nsteps, ndone, st, recorder)
+            self%busy = .false.
             if (st /= FSYM_SUCCESS) then
                 call report(self, q, v, st, stat, errmsg); return
             end if
@@ -211,7 +278,9 @@ contains
         left = nsteps
         if (present(stat)) stat = FSYM_SUCCESS
         do while (left > 0)
+            self%busy = .true.     ! not while the observer looks: it may save a checkpoint
             call advance(self, model, q, v, h, min(chunk, left), ndone, st, recorder)
+            self%busy = .false.
             if (st /= FSYM_SUCCESS) call report(self, q, v, st, stat, errmsg)
             if (present(stat)) stat = st
             if (st /= FSYM_SUCCESS .or. ndone < min(chunk, left)) return
@@ -225,17 +294,36 @@ contains
         end do
     end subroutine integrator_run
 
-    !> FSYM_SUCCESS when the integrator is set up for arrays of the shape of q and v; else
-    !> why a step is refused.
-    pure integer function refusal(self, q, v) result(st)
+    !> FSYM_SUCCESS when the integrator is set up for arrays of the shape of q and v, is not
+    !> in a step already (FSYM_ERR_BUSY: a force model that steps its own integrator), and q
+    !> and v do not share memory (FSYM_ERR_BAD_ARGUMENT); else why a step is refused.
+    integer function refusal(self, q, v) result(st)
         class(integrator_t), intent(in) :: self
         real(wp), intent(in), contiguous :: q(:, :), v(:, :)
         st = FSYM_SUCCESS
-        if (.not. (self%ready .and. size(q, 1) == self%nd .and. size(q, 2) == self%nb &
-                   .and. size(v, 1) == self%nd .and. size(v, 2) == self%nb)) then
+        if (self%busy) then
+            st = FSYM_ERR_BUSY
+        else if (.not. (self%ready .and. size(q, 1) == self%nd .and. size(q, 2) == self%nb &
+                        .and. size(v, 1) == self%nd .and. size(v, 2) == self%nb)) then
             st = merge(FSYM_ERR_SHAPE, FSYM_ERR_NOT_INITIALIZED, self%ready)
+        else if (fsym_overlap(q, v)) then
+            st = FSYM_ERR_BAD_ARGUMENT
         end if
     end function refusal
+
+    !> Whether two contiguous arrays share memory (by address: the same array passed as q
+    !> and as v, or overlapping sections of one array).
+    logical function fsym_overlap(x, y)
+        real(wp), intent(in), contiguous, target :: x(:, :)  !! first array
+        real(wp), intent(in), contiguous, target :: y(:, :)  !! second array
+        integer(c_intptr_t) :: ax, ay, nx, ny
+        fsym_overlap = .false.
+        if (size(x) == 0 .or. size(y) == 0) return
+        ax = transfer(c_loc(x), ax); ay = transfer(c_loc(y), ay)
+        nx = size(x, kind=c_intptr_t) * (storage_size(x) / 8)
+        ny = size(y, kind=c_intptr_t) * (storage_size(y) / 8)
+        fsym_overlap = ax < ay + ny .and. ay < ax + nx
+    end function fsym_overlap
 
     !> Up to `nsteps` steps in one kernel call, with the checks a call makes, the clock and
     !> the counters, on arrays of the integrator's shape (`refusal` has checked it; explicit
@@ -281,8 +369,15 @@ contains
         select case (st)
         case (FSYM_ERR_NOT_INITIALIZED)
             call fsym_report(st, 'integrator_t%step before init', stat, errmsg)
+        case (FSYM_ERR_BUSY)
+            call fsym_report(st, 'a step of this integrator is in progress: its force '// &
+                             'model called it again (re-entry refused, nothing changed)', &
+                             stat, errmsg)
+        case (FSYM_ERR_BAD_ARGUMENT)
+            call fsym_report(st, 'q and v share memory (the same array, or overlapping '// &
+                             'sections, passed as both); nothing changed', stat, errmsg)
         case (FSYM_ERR_SHAPE)
-            call fsym_report(st, shape_text(self%nd, self%nb, q, v), stat, errmsg)
+            call fsym_report(st, trim(shape_text(self%nd, self%nb, q, v)), stat, errmsg)
         case (FSYM_ERR_NO_GRADIENT)
             call fsym_report(st, 'method '//self%sc%name//': this model has no gradient term', &
                              stat, errmsg)
@@ -313,34 +408,20 @@ contains
         end if
     end subroutine watched_run
 
-    !> The kernel step by step, each step checked by the guard (h omega <= limit) at its
-    !> start and at its end; a step that ends beyond the limit is undone (the kernel keeps
-    !> the state of the step's start), so a refused step leaves the state as it was.
+    !> The kernel step by step under the guard (`fsym_guard_run`: every step checked at its
+    !> start, at every drift and at its end; a refused step is undone, the state intact).
     subroutine guarded_run(self, model, q, v, h, nsteps, ndone, st, recorder, step0)
         class(integrator_t), intent(inout) :: self
-        class(force_model_t), intent(inout) :: model
-        real(wp), intent(inout) :: q(self%nd, self%nb), v(self%nd, self%nb)
+        class(force_model_t), intent(inout), target :: model
+        real(wp), intent(inout), contiguous :: q(:, :), v(:, :)
         real(wp), intent(in) :: h
         integer(ik), intent(in) :: nsteps, step0
         integer(ik), intent(out) :: ndone
         integer, intent(out) :: st
         class(recorder_t), intent(inout), optional :: recorder
-        integer(ik) :: i, nd
-        ndone = 0; st = FSYM_SUCCESS
-        do i = 1, nsteps
-            call fsym_guard_check(self%guard, model, q, h, st)
-            if (st /= FSYM_SUCCESS) exit
-            call fsym_kernel_run(self%sc%nop, self%sc%op, self%sc%c, self%sc%u, model, &
-                                 self%ks, q, v, self%w(self%w0), h, 1_ik, nd, st, recorder, &
-                                 step0 + ndone, t0=self%time() + real(ndone, wp) * h)
-            if (st /= FSYM_SUCCESS) return
-            call fsym_guard_check(self%guard, model, q, h, st)
-            if (st /= FSYM_SUCCESS) then
-                call fsym_kernel_abort(self%ks, q, v, self%w(self%w0), completed=.true.)
-                exit
-            end if
-            ndone = ndone + nd
-        end do
+        call fsym_guard_run(self%guard, self%sc%nop, self%sc%op, self%sc%c, self%sc%u, model, &
+                            self%ks, q, v, self%w(self%w0:), h, nsteps, ndone, st, self%comp, &
+                            recorder, step0, t0=self%time())
     end subroutine guarded_run
 
     !> Turn the step-size guard on (`on`) or off. On, every step first asks the model for its
@@ -362,6 +443,9 @@ contains
         if (.not. self%ready) then
             call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'set_guard before init', stat, errmsg)
             return
+        end if
+        if (self%busy) then
+            call fsym_report(FSYM_ERR_BUSY, 'set_guard inside a step', stat, errmsg); return
         end if
         if (.not. on) then
             self%guard%on = .false.
@@ -433,9 +517,11 @@ contains
         end do
     end subroutine name_nonfinite
 
-    !> Release the workspace; `init` must be called again before use.
+    !> Release the workspace; `init` must be called again before use. Ignored while a step
+    !> is in progress (from inside the force model: the step still uses the workspace).
     subroutine integrator_destroy(self)
         class(integrator_t), intent(inout) :: self  !! the integrator
+        if (self%busy) return
         if (allocated(self%w)) deallocate (self%w)
         self%ready = .false.
     end subroutine integrator_destroy
@@ -451,8 +537,14 @@ contains
     !> only after changing the force model's own parameters between steps.
     subroutine integrator_reset_cache(self)
         class(integrator_t), intent(inout) :: self  !! the integrator
-        call fsym_kernel_invalidate(self%ks)
+        if (.not. self%busy) call fsym_kernel_invalidate(self%ks)
     end subroutine integrator_reset_cache
+
+    !> True while a step of this integrator is in progress (its force model is being called).
+    pure logical function integrator_in_use(self)
+        class(integrator_t), intent(in) :: self  !! the integrator
+        integrator_in_use = self%busy
+    end function integrator_in_use
 
     !> Reals of workspace held (d * n * slots).
     pure integer(ik) function integrator_work_size(self)
@@ -511,6 +603,7 @@ contains
             call fsym_report(st, msg, stat, errmsg); return
         end if
         call self%clock_state(clock%t_base, clock%h_now, clock%k_since, clock%steps, 1)
+        self%can_undo = .false.
         call fsym_kernel_counts(self%ks, nf, ng)
         call self%counters(nf, ng, 1)
         if (present(stat)) stat = FSYM_SUCCESS
@@ -519,17 +612,22 @@ contains
     !> The checks a checkpoint call makes: set up, shapes, length of ck.
     logical function checkpoint_fits(self, q, v, nck, stat, errmsg) result(ok)
         class(integrator_t), intent(in) :: self
-        real(wp), intent(in) :: q(:, :), v(:, :)
+        real(wp), intent(in), contiguous :: q(:, :), v(:, :)
         integer(ik), intent(in) :: nck
         integer, intent(out), optional :: stat
         character(len=*), intent(inout), optional :: errmsg
         ok = .false.
         if (.not. self%ready) then
             call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'checkpoint before init', stat, errmsg)
+        else if (self%busy) then
+            call fsym_report(FSYM_ERR_BUSY, 'checkpoint inside a step (from the force model)', &
+                             stat, errmsg)
         else if (size(q, 1) /= self%nd .or. size(q, 2) /= self%nb .or. &
                  size(v, 1) /= self%nd .or. size(v, 2) /= self%nb) then
-            call fsym_report(FSYM_ERR_SHAPE, shape_text(self%nd, self%nb, q, v), stat, &
+            call fsym_report(FSYM_ERR_SHAPE, trim(shape_text(self%nd, self%nb, q, v)), stat, &
                              errmsg)
+        else if (fsym_overlap(q, v)) then
+            call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'q and v share memory', stat, errmsg)
         else if (nck < self%checkpoint_length()) then
             call fsym_report(FSYM_ERR_CHECKPOINT, 'checkpoint array shorter than '// &
                              fsym_int_text(self%checkpoint_length()), stat, errmsg)
@@ -546,14 +644,14 @@ contains
         k = 1 + int(modulo(-addr, 64_c_intptr_t) / (storage_size(x) / 8))
     end function aligned_start
 
+    !> The shapes expected and given, in a fixed-length result (a deferred-length result
+    !> would keep its length in a static variable of the caller, shared by threads).
     function shape_text(d, n, q, v) result(s)
         integer, intent(in) :: d, n
         real(wp), intent(in) :: q(:, :), v(:, :)
-        character(len=:), allocatable :: s
-        character(len=128) :: buf
-        write (buf, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'expected (', d, ',', n, &
+        character(len=128) :: s
+        write (s, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'expected (', d, ',', n, &
             '), got q(', size(q, 1), ',', size(q, 2), ') and v(', size(v, 1), ',', size(v, 2), ')'
-        s = trim(buf)
     end function shape_text
 
 end module fsym_integrator

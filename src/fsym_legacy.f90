@@ -17,7 +17,8 @@
 !> FSYMIL (the same by label, for any label), FSYMST (steps with an EXTERNAL acceleration
 !> routine; FSYMG0 as GRAD says "no gradient term"), FSYMRC (one step by reverse
 !> communication), FSYMRS (forget the cached force), FSYMNF/FSYMNL (evaluation counts),
-!> FSYMMS (status text), FSYMCV (calling-convention check), FSYMPK/FSYMUP
+!> FSYMMS (status text), FSYMCV (calling-convention check), FSYMGD (FSYMST with the
+!> step-size guard), FSYMPK/FSYMUP
 !> (structure-of-arrays adapter).
 
 !> Method id of a name: its index in `fsym_catalogue()` (1 = T2, 2 = FR, 3 = A, 4 = A', ...),
@@ -142,14 +143,8 @@ end subroutine FSYMIL
 !> completed step; IW(7) tells how many were done. NSTEP <= 0 is refused (INFO = 19).
 !> INFO = 9: RW/IW not set up by FSYMIN; 7: set up for other ND, N; 10: LRW or LIW short.
 subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
-    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_REQUEST, FSYM_ERR_NO_GRADIENT, &
-                           FSYM_ERR_BAD_ARGUMENT
-    use fsym_kinds, only: wp, ik
-    use fsym_scheme, only: OP_GRAD_KICK
-    use fsym_kernel, only: kernel_state_t, fsym_kernel_run, fsym_kernel_request, KERNEL_NPACK, &
-                           REQ_NONE
-    use fsym_legacy_work, only: legacy_check, legacy_load, legacy_store, legacy_model_t, &
-                                LEGACY_KO, LEGACY_KC
+    use fsym_kinds, only: wp
+    use fsym_legacy_work, only: legacy_model_t, legacy_steps
     use fsym_legacy_api, only: fsym_legacy_accel, fsym_legacy_grad, FSYMG0
     implicit none
     integer, intent(in) :: ND, N                !! dimensions, bodies
@@ -163,40 +158,45 @@ subroutine FSYMST(ND, N, X, V, H, NSTEP, ACCEL, GRAD, RW, LRW, IW, LIW, INFO)
     integer, intent(out) :: INFO                !! status
     procedure(fsym_legacy_accel) :: ACCEL       !! ACCEL(ND, N, X, A): accelerations at X
     procedure(fsym_legacy_grad) :: GRAD         !! GRAD(ND, N, X, A, G): gradient term at X
-    type(kernel_state_t) :: ks
     type(legacy_model_t) :: model
-    integer :: nop, kw, req, at, into, given
-    integer(ik) :: ndone
-    INFO = legacy_check(ND, N, LRW, LIW, IW)
-    ! IW may be shorter than 7 here: write nothing into it
-    if (INFO /= FSYM_SUCCESS) return
-    IW(7) = 0
-    nop = IW(4)
-    if (NSTEP < 1) then
-        INFO = FSYM_ERR_BAD_ARGUMENT; return
-    end if
-    call legacy_load(LIW, IW, RW(1:KERNEL_NPACK), ks, INFO)
-    if (INFO /= FSYM_SUCCESS) return
-    call fsym_kernel_request(ks, req, at, into, given)
-    if (req /= REQ_NONE) then
-        INFO = FSYM_ERR_BAD_REQUEST; return     ! a reverse-communication step is open
-    end if
     model%accel => ACCEL
     model%grad => GRAD
-    if (associated(model%grad, FSYMG0)) then
-        model%grad => null()
-        if (any(IW(LEGACY_KO:LEGACY_KO + nop - 1) == OP_GRAD_KICK)) then
-            INFO = FSYM_ERR_NO_GRADIENT; return
-        end if
-    end if
-    kw = LEGACY_KC + 2 * nop
-    call fsym_kernel_run(nop, IW(LEGACY_KO:LEGACY_KO + nop - 1), &
-                         RW(LEGACY_KC:LEGACY_KC + nop - 1), RW(LEGACY_KC + nop:kw - 1), &
-                         model, ks, X, V, RW(kw), H, &
-                         int(NSTEP, ik), ndone, INFO)
-    IW(7) = int(ndone)
-    call legacy_store(ks, RW(1:KERNEL_NPACK))
+    if (associated(model%grad, FSYMG0)) model%grad => null()
+    call legacy_steps(ND, N, X, V, H, NSTEP, model, RW, LRW, IW, LIW, INFO)
 end subroutine FSYMST
+
+!> FSYMST with the step-size guard (as `integrator_t%set_guard`): the caller's routine
+!> `FREQ(ND, N, X, W2, R)` gives the largest local omega^2 at X and the distance R where it
+!> occurs (e.g. 2 G (m_i + m_j) / r_ij^3 over the pairs). Every step is checked at its start,
+!> at every drift (end point and chord) and at its end against FRAC x* (x*: the method's
+!> stability limit, kept in IW by FSYMIN; FRAC <= 0 means 1); a step beyond it is refused
+!> with INFO = 20 (FSYM_ERR_STEP_TOO_LARGE), X and V those of the last step taken (IW(7)
+!> of them). Otherwise as FSYMST.
+subroutine FSYMGD(ND, N, X, V, H, NSTEP, ACCEL, GRAD, FREQ, FRAC, RW, LRW, IW, LIW, INFO)
+    use fsym_kinds, only: wp
+    use fsym_legacy_work, only: legacy_model_t, legacy_steps
+    use fsym_legacy_api, only: fsym_legacy_accel, fsym_legacy_grad, fsym_legacy_freq, FSYMG0
+    implicit none
+    integer, intent(in) :: ND, N                !! dimensions, bodies
+    real(wp), intent(inout) :: X(ND, N)         !! positions
+    real(wp), intent(inout) :: V(ND, N)         !! velocities
+    real(wp), intent(in) :: H                   !! step
+    integer, intent(in) :: NSTEP                !! number of steps
+    real(wp), intent(in) :: FRAC                !! fraction of x* (<= 0: 1)
+    integer, intent(in) :: LRW, LIW             !! lengths of RW and IW
+    real(wp), intent(inout) :: RW(LRW)          !! work array set up by FSYMIN
+    integer, intent(inout) :: IW(LIW)           !! work array set up by FSYMIN
+    integer, intent(out) :: INFO                !! status
+    procedure(fsym_legacy_accel) :: ACCEL       !! ACCEL(ND, N, X, A): accelerations at X
+    procedure(fsym_legacy_grad) :: GRAD         !! GRAD(ND, N, X, A, G), or FSYMG0
+    procedure(fsym_legacy_freq) :: FREQ         !! FREQ(ND, N, X, W2, R): local frequency
+    type(legacy_model_t) :: model
+    model%accel => ACCEL
+    model%grad => GRAD
+    model%freq => FREQ
+    if (associated(model%grad, FSYMG0)) model%grad => null()
+    call legacy_steps(ND, N, X, V, H, NSTEP, model, RW, LRW, IW, LIW, INFO, FRAC)
+end subroutine FSYMGD
 
 !> The "no gradient term" routine: pass it as GRAD to FSYMST when the model has none (a
 !> method with a gradient kick is then refused instead of run with a wrong gradient). It is
@@ -225,7 +225,8 @@ end subroutine FSYMG0
 !> the next call with IREQ = 0 starts a new step. INFO = 9, 7, 10 as for FSYMST. It runs the
 !> kernel of FSYMST stage by stage: the kernel suspends where FSYMST would call ACCEL or GRAD.
 subroutine FSYMRC(ND, N, X, V, H, RW, LRW, IW, LIW, IREQ, IPNT, INFO)
-    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_REQUEST
+    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_REQUEST, FSYM_ERR_BAD_ARGUMENT
+    use fsym_integrator, only: fsym_overlap
     use fsym_kinds, only: wp, ik
     use fsym_kernel, only: kernel_state_t, fsym_kernel_run, fsym_kernel_abort, &
                            fsym_kernel_request, KERNEL_SUSPEND, KERNEL_NPACK, REQ_NONE
@@ -247,7 +248,8 @@ subroutine FSYMRC(ND, N, X, V, H, RW, LRW, IW, LIW, IREQ, IPNT, INFO)
     integer :: nop, kw, m, req, at, into, given
     integer(ik) :: ndone
     IPNT = 0
-    INFO = legacy_check(ND, N, LRW, LIW, IW)
+    INFO = legacy_check(ND, N, LRW, LIW, IW, RW)
+    if (INFO == FSYM_SUCCESS .and. fsym_overlap(X, V)) INFO = FSYM_ERR_BAD_ARGUMENT
     if (INFO /= FSYM_SUCCESS) then
         IREQ = -1; return
     end if
@@ -336,7 +338,7 @@ subroutine FSYMRS(ND, N, X, V, RW, LRW, IW, LIW, INFO)
     integer, intent(inout) :: IW(LIW)           !! work array set up by FSYMIN
     integer, intent(out) :: INFO                !! status
     type(kernel_state_t) :: ks
-    INFO = legacy_check(ND, N, LRW, LIW, IW)
+    INFO = legacy_check(ND, N, LRW, LIW, IW, RW)
     if (INFO /= FSYM_SUCCESS) return
     call legacy_load(LIW, IW, RW(1:KERNEL_NPACK), ks, INFO)
     if (INFO /= FSYM_SUCCESS) return
@@ -384,7 +386,7 @@ subroutine FSYMCL(ND, N, RW, LRW, IW, LIW, LCK, INFO)
     integer, intent(out) :: INFO                !! status
     integer(ik) :: m
     LCK = 0
-    INFO = legacy_check(ND, N, LRW, LIW, IW)
+    INFO = legacy_check(ND, N, LRW, LIW, IW, RW)
     if (INFO /= FSYM_SUCCESS) return
     m = fsym_checkpoint_length(IW(4), ND, N, IW(5))
     if (m > huge(LCK)) then
@@ -417,7 +419,7 @@ subroutine FSYMCK(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
     type(kernel_state_t) :: ks
     type(ckpt_clock_t) :: clock
     integer :: nop, kw, req, at, into, given
-    INFO = legacy_check(ND, N, LRW, LIW, IW)
+    INFO = legacy_check(ND, N, LRW, LIW, IW, RW)
     if (INFO /= FSYM_SUCCESS) return
     nop = IW(4); kw = LEGACY_KC + 2 * nop
     if (LCK < fsym_checkpoint_length(nop, ND, N, IW(5))) then
@@ -443,7 +445,8 @@ subroutine FSYMCR(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
     use fsym_kinds, only: wp, ik
     use fsym_kernel, only: kernel_state_t, KERNEL_NPACK
     use fsym_checkpoint, only: ckpt_clock_t, fsym_checkpoint_unpack
-    use fsym_legacy_work, only: legacy_check, legacy_load, legacy_store, LEGACY_KO, LEGACY_KC
+    use fsym_legacy_work, only: legacy_check, legacy_load, legacy_store, legacy_seal, &
+                                LEGACY_KO, LEGACY_KC
     implicit none
     integer, intent(in) :: ND, N                !! dimensions, bodies
     real(wp), intent(inout) :: X(ND, N)         !! positions
@@ -458,7 +461,7 @@ subroutine FSYMCR(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
     type(ckpt_clock_t) :: clock
     integer :: nop, kw
     character(len=128) :: msg
-    INFO = legacy_check(ND, N, LRW, LIW, IW)
+    INFO = legacy_check(ND, N, LRW, LIW, IW, RW)
     if (INFO /= FSYM_SUCCESS) return
     nop = IW(4); kw = LEGACY_KC + 2 * nop
     call legacy_load(LIW, IW, RW(1:KERNEL_NPACK), ks, INFO)
@@ -469,6 +472,7 @@ subroutine FSYMCR(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
     if (INFO /= FSYM_SUCCESS) return
     call legacy_store(ks, RW(1:KERNEL_NPACK))
     IW(7) = 0
+    call legacy_seal(LIW, IW, LRW, RW)
 end subroutine FSYMCR
 
 !> Text of a status code INFO, blank-padded or cut to the length of MSG.

@@ -8,7 +8,7 @@ module fsym_legacy_api
 
     public :: FSYMID, FSYMWK, FSYMIN, FSYMST, FSYMRC, FSYMNF, FSYMMS, FSYMPK, FSYMUP
     public :: FSYMWL, FSYMIL, FSYMG0, FSYMNL, FSYMRS, FSYMCV, FSYMCL, FSYMCK, FSYMCR
-    public :: fsym_legacy_accel, fsym_legacy_grad
+    public :: FSYMGD, fsym_legacy_accel, fsym_legacy_grad, fsym_legacy_freq
 
     abstract interface
         !> The caller's acceleration routine: accelerations A of the bodies at positions X.
@@ -27,6 +27,17 @@ module fsym_legacy_api
             real(wp), intent(in) :: X(ND, N), A(ND, N)    !! positions, accelerations
             real(wp), intent(out) :: G(ND, N)             !! gradient term
         end subroutine fsym_legacy_grad
+        !> The caller's local-frequency routine (for the guard of FSYMGD): the largest
+        !> omega^2 of its bodies or pairs at X (e.g. 2 G (m_i + m_j) / r_ij^3) and the
+        !> distance R where it occurs.
+        subroutine fsym_legacy_freq(ND, N, X, W2, R)
+            import :: wp
+            implicit none
+            integer, intent(in) :: ND, N          !! dimensions, bodies
+            real(wp), intent(in) :: X(ND, N)      !! positions
+            real(wp), intent(out) :: W2           !! largest omega^2
+            real(wp), intent(out) :: R            !! distance where it occurs
+        end subroutine fsym_legacy_freq
     end interface
 
     interface
@@ -65,6 +76,23 @@ module fsym_legacy_api
             procedure(fsym_legacy_accel) :: ACCEL     !! acceleration routine
             procedure(fsym_legacy_grad) :: GRAD       !! gradient-term routine
         end subroutine FSYMST
+        !> NSTEP guarded steps (the step-size guard of `set_guard`).
+        subroutine FSYMGD(ND, N, X, V, H, NSTEP, ACCEL, GRAD, FREQ, FRAC, RW, LRW, IW, LIW, &
+                          INFO)
+            import :: wp, fsym_legacy_accel, fsym_legacy_grad, fsym_legacy_freq
+            implicit none
+            integer, intent(in) :: ND, N                  !! dimensions, bodies
+            real(wp), intent(inout) :: X(ND, N), V(ND, N) !! state
+            real(wp), intent(in) :: H                     !! step
+            integer, intent(in) :: NSTEP, LRW, LIW        !! steps, lengths
+            real(wp), intent(in) :: FRAC                  !! fraction of x* (<= 0: 1)
+            real(wp), intent(inout) :: RW(LRW)            !! real work array
+            integer, intent(inout) :: IW(LIW)             !! integer work array
+            integer, intent(out) :: INFO                  !! status
+            procedure(fsym_legacy_accel) :: ACCEL     !! acceleration routine
+            procedure(fsym_legacy_grad) :: GRAD       !! gradient-term routine
+            procedure(fsym_legacy_freq) :: FREQ       !! local-frequency routine
+        end subroutine FSYMGD
         !> One step by reverse communication.
         subroutine FSYMRC(ND, N, X, V, H, RW, LRW, IW, LIW, IREQ, IPNT, INFO)
             import :: wp

@@ -34,7 +34,7 @@
 !> (n <= FSYM_NBODY_BLOCK) the order is plain ascending k.
 module fsym_nbody
     use fsym_kinds, only: wp
-    use fsym_status, only: fsym_report, FSYM_SUCCESS, FSYM_ERR_SHAPE, FSYM_ERR_BAD_PARAMETER, &
+    use fsym_status, only: fsym_report, FSYM_SUCCESS, FSYM_ERR_SHAPE, FSYM_ERR_BAD_ARGUMENT, &
                            FSYM_ERR_NOT_INITIALIZED
     use fsym_force, only: force_model_t
     use fsym_nbody_frequency, only: fsym_nbody_local_frequency
@@ -106,12 +106,11 @@ contains
             return
         end if
         if (.not. (all(m > 0.0_wp) .and. all(m <= huge(m)))) then
-            call fsym_report(FSYM_ERR_BAD_PARAMETER, 'nbody: masses must be positive and finite', &
-                             stat, errmsg)
+            call mass_refusal(m, stat, errmsg)
             return
         end if
         if (.not. (g > 0.0_wp .and. g <= huge(g) .and. e >= 0.0_wp .and. e <= huge(e))) then
-            call fsym_report(FSYM_ERR_BAD_PARAMETER, 'nbody: need G > 0 and eps >= 0, finite', &
+            call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'nbody: need G > 0 and eps >= 0, finite', &
                              stat, errmsg)
             return
         end if
@@ -876,5 +875,28 @@ contains
         end do
         e = e + fsym_nbody_potential(size(self%m), self%m, self%g, self%eps, q)
     end function nbody_energy
+
+
+    !> The refusal of a mass that is not positive and finite, naming the body and saying what
+    !> to do for a massless test particle (m = 0: this model requires positive masses).
+    subroutine mass_refusal(m, stat, errmsg)
+        real(wp), intent(in) :: m(:)
+        integer, intent(out), optional :: stat
+        character(len=*), intent(inout), optional :: errmsg
+        character(len=200) :: buf
+        integer :: k
+        do k = 1, size(m)
+            if (.not. (m(k) > 0.0_wp .and. m(k) <= huge(m))) exit
+        end do
+        k = min(k, size(m))
+        if (m(k) == 0.0_wp) then
+            write (buf, '(a,i0,a)') 'nbody: body ', k, ' has mass 0; massless test particles '// &
+                'are not supported (give it a mass far below the others'')'
+        else
+            write (buf, '(a,i0,a,es12.5,a)') 'nbody: body ', k, ' has mass ', m(k), &
+                '; masses must be positive and finite'
+        end if
+        call fsym_report(FSYM_ERR_BAD_ARGUMENT, trim(buf), stat, errmsg)
+    end subroutine mass_refusal
 
 end module fsym_nbody

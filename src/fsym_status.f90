@@ -62,7 +62,10 @@ module fsym_status
         !! The F77 caller's integers are not default 4-byte integers (see FSYMCV).
     integer, parameter, public :: FSYM_ERR_NO_MEMORY = 23
         !! An allocation failed (e.g. a method table too large for memory).
-    integer, parameter, public :: FSYM_ERR_LAST = 23
+    integer, parameter, public :: FSYM_ERR_BUSY = 24
+        !! The object is in use: called again from inside its own call (a force model that
+        !! steps the integrator that called it), or its work array was written meanwhile.
+    integer, parameter, public :: FSYM_ERR_LAST = 24
         !! Largest status code in use.
     integer, parameter, public :: FSYM_STATUS_MSG_LEN = 48
         !! Longest text of `fsym_status_message` (a buffer of this length always holds it).
@@ -97,6 +100,7 @@ module fsym_status
          'checkpoint does not fit', &
          'caller integers are not 4-byte integers', &
          'out of memory', &
+         'object busy: called from its own callback', &
          'unknown status code']
 
     !> Decimal text of an integer (default kind or `ik`), for messages and labels; its length
