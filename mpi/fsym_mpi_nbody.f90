@@ -32,7 +32,7 @@ module fsym_mpi_nbody
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use fsym_kinds, only: wp
-    use fsym_status, only: fsym_report, FSYM_SUCCESS, FSYM_ERR_SHAPE, FSYM_ERR_BAD_PARAMETER, &
+    use fsym_status, only: fsym_report, FSYM_SUCCESS, FSYM_ERR_SHAPE, FSYM_ERR_BAD_ARGUMENT, &
                            FSYM_ERR_NOT_INITIALIZED, FSYM_ERR_NONFINITE_FORCE, FSYM_ERR_MODEL
     use fsym_force, only: force_model_t
     use fsym_nbody, only: fsym_nbody_accel_range, fsym_nbody_gradient_range
@@ -112,7 +112,7 @@ contains
         if (e_local == FSYM_SUCCESS) then
             if (.not. (all(m > 0.0_wp) .and. all(m <= huge(m)) .and. g > 0.0_wp .and. &
                        g <= huge(g) .and. e >= 0.0_wp .and. e <= huge(e))) then
-                e_local = FSYM_ERR_BAD_PARAMETER
+                e_local = FSYM_ERR_BAD_ARGUMENT
             end if
         end if
         call MPI_Allreduce(e_local, e_all, 1, MPI_INTEGER, MPI_MAX, comm, ierr)
