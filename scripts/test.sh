@@ -7,7 +7,7 @@
 #                       per-method checks), the H5MD conformance, the clients (F77, C, CMake
 #                       consumer, fpm) and example/user_model_test against an install of this
 #                       tree's library, the C-face fuzzing;
-#   build/test-release  -O3 -march=native -ffp-contract=off: the suites with bitwise tests
+#   build/test-release  -O3 -march=native -ffp-contract=off: the suites that compare bits
 #                       (FSYM_TEST_BITWISE_ONLY: the comparisons that must hold under release
 #                       flags too) and the threads and MPI tests: this tree builds the library
 #                       with OpenMP and the MPI parts (FSYM_OPENMP, FSYM_MPI): threads and 1,

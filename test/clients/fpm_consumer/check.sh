@@ -11,6 +11,7 @@
 #      study module that calls it (fpm links into each program only the app/ modules it uses).
 # Exits non-zero on any failure. Run from anywhere; needs fpm on PATH.
 set -euo pipefail
+command -v fpm > /dev/null 2>&1 || { echo "[fpm-consumer] fpm not on PATH: skipped"; exit 77; }
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../../.." && pwd)
 tmp=$(mktemp -d)
