@@ -84,12 +84,14 @@ contains
         integer, intent(inout) :: stat                !! 0 on entry; non-zero = failure
         g = 0.0_wp
         stat = 1
+        associate (unused_self => self, unused_q => q, unused_a => a); end associate   ! the interface's arguments
     end subroutine force_no_gradient
 
     !> Whether `gradient` is provided (default: no).
     logical function force_has_no_gradient(self)
         class(force_model_t), intent(in) :: self  !! the model
         force_has_no_gradient = .false.
+        associate (unused => self); end associate   ! the interface's arguments
     end function force_has_no_gradient
 
     !> Default potential: not provided (returns 0 and sets `stat` = 1).
@@ -100,6 +102,7 @@ contains
         integer, intent(inout) :: stat                !! 0 on entry; non-zero = failure
         epot = 0.0_wp
         stat = 1
+        associate (unused_self => self, unused_q => q); end associate   ! the interface's arguments
     end subroutine force_no_potential
 
     !> Default drift: free flight, q <- q + dt v (the kinetic part p^2/2 of H). A model whose
@@ -114,12 +117,14 @@ contains
         real(wp), intent(in) :: dt                       !! time to flow (any sign)
         integer, intent(inout) :: stat                   !! 0 on entry; non-zero = failure
         q = q + dt * v
+        associate (unused_self => self, unused => stat); end associate   ! the interface's arguments
     end subroutine force_free_drift
 
     !> Whether `drift` is overridden (default: no, the kernel does free flight inline).
     logical function force_has_free_drift(self)
         class(force_model_t), intent(in) :: self  !! the model
         force_has_free_drift = .false.
+        associate (unused => self); end associate   ! the interface's arguments
     end function force_has_free_drift
 
     !> Default `set_time`: the force does not depend on time. A model whose force does (a
@@ -130,19 +135,21 @@ contains
     subroutine force_ignore_time(self, t)
         class(force_model_t), intent(inout) :: self  !! the model
         real(wp), intent(in) :: t                     !! time of the next evaluation
-        if (t /= t) return
+        associate (unused_self => self, unused => t); end associate   ! the interface's arguments
     end subroutine force_ignore_time
 
     !> Whether `set_time` is overridden (default: no).
     logical function force_has_no_time(self)
         class(force_model_t), intent(in) :: self  !! the model
         force_has_no_time = .false.
+        associate (unused => self); end associate   ! the interface's arguments
     end function force_has_no_time
 
     !> Whether `potential` is provided (default: no).
     logical function force_has_no_potential(self)
         class(force_model_t), intent(in) :: self  !! the model
         force_has_no_potential = .false.
+        associate (unused => self); end associate   ! the interface's arguments
     end function force_has_no_potential
 
     !> Default local frequency: not provided (omega2 = 0, r = 0, `stat` = 1). A model that
@@ -157,12 +164,14 @@ contains
         integer, intent(inout) :: stat                   !! 0 on entry; non-zero = failure
         omega2 = 0.0_wp; r = 0.0_wp
         stat = 1
+        associate (unused_self => self, unused_q => q); end associate   ! the interface's arguments
     end subroutine force_no_frequency
 
     !> Whether `local_frequency` is provided (default: no).
     logical function force_has_no_frequency(self)
         class(force_model_t), intent(in) :: self  !! the model
         force_has_no_frequency = .false.
+        associate (unused => self); end associate   ! the interface's arguments
     end function force_has_no_frequency
 
 end module fsym_force

@@ -225,6 +225,7 @@ contains
         real(wp), intent(out), contiguous :: a(:, :)               !! accelerations (d, n)
         integer, intent(inout) :: stat                 !! unchanged: never fails itself
         integer :: j0, j1, d, n
+        associate (unused => stat); end associate   ! the interface's arguments
         d = size(q, 1); n = size(q, 2)
         ! Threads (when built with OpenMP) over chunks of bodies: the bodies are independent
         ! and every chunk runs the operations of `kepler_field`, so the bits do not depend on
@@ -245,6 +246,7 @@ contains
         real(wp), intent(out), contiguous :: g(:, :)               !! gradient term (d, n)
         integer, intent(inout) :: stat                 !! unchanged: never fails itself
         integer :: j0, j1, d, n
+        associate (unused => stat); end associate   ! the interface's arguments
         d = size(q, 1); n = size(q, 2)
         !$omp parallel do schedule(static) private(j1) if(n >= 2 * OMP_CHUNK)
         do j0 = 1, n, OMP_CHUNK
@@ -340,6 +342,7 @@ contains
     !> The Kepler model provides the gradient term.
     logical function kepler_model_has_gradient(self)
         class(kepler_model_t), intent(in) :: self  !! the model
+        associate (unused => self); end associate   ! the interface's arguments
         kepler_model_has_gradient = .true.
     end function kepler_model_has_gradient
 
@@ -350,6 +353,7 @@ contains
         real(wp), intent(out) :: epot                  !! sum of -mu/|q_j|
         integer, intent(inout) :: stat                 !! unchanged: never fails itself
         integer :: j
+        associate (unused => stat); end associate   ! the interface's arguments
         epot = 0.0_wp
         do j = 1, size(q, 2)
             epot = epot + kepler_potential(q(:, j), self%mu)
@@ -360,6 +364,7 @@ contains
     !> step-size guard) (`has_potential`, `has_frequency`).
     logical function kepler_model_provides(self)
         class(kepler_model_t), intent(in) :: self  !! the model
+        associate (unused => self); end associate   ! the interface's arguments
         kepler_model_provides = .true.
     end function kepler_model_provides
 
@@ -372,6 +377,7 @@ contains
         real(wp), intent(out) :: r                    !! smallest distance to the centre
         integer, intent(inout) :: stat                !! unchanged: never fails itself
         integer :: j
+        associate (unused => stat); end associate   ! the interface's arguments
         r = huge(r)
         do j = 1, size(q, 2)
             r = min(r, sqrt(sum(q(:, j)**2)))

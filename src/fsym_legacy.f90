@@ -207,6 +207,7 @@ subroutine FSYMG0(ND, N, X, A, G)
     integer, intent(in) :: ND, N                  !! dimensions, bodies
     real(wp), intent(in) :: X(ND, N), A(ND, N)    !! positions, accelerations
     real(wp), intent(out) :: G(ND, N)             !! set to zero
+    associate (unused_x => X, unused_a => A); end associate   ! GRAD's arguments
     G = 0.0_wp
 end subroutine FSYMG0
 
@@ -402,7 +403,7 @@ end subroutine FSYMCL
 !> time and step count in CK are 0.
 subroutine FSYMCK(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_REQUEST, FSYM_ERR_CHECKPOINT
-    use fsym_kinds, only: wp, ik
+    use fsym_kinds, only: wp
     use fsym_kernel, only: kernel_state_t, fsym_kernel_request, KERNEL_NPACK, REQ_NONE
     use fsym_checkpoint, only: ckpt_clock_t, fsym_checkpoint_length, fsym_checkpoint_pack
     use fsym_legacy_work, only: legacy_check, legacy_load, LEGACY_KO, LEGACY_KC
@@ -442,7 +443,7 @@ end subroutine FSYMCK
 !> corrupt, of another version, method, shape or a compensated run; nothing changes then.
 subroutine FSYMCR(ND, N, X, V, RW, LRW, IW, LIW, CK, LCK, INFO)
     use fsym_status, only: FSYM_SUCCESS
-    use fsym_kinds, only: wp, ik
+    use fsym_kinds, only: wp
     use fsym_kernel, only: kernel_state_t, KERNEL_NPACK
     use fsym_checkpoint, only: ckpt_clock_t, fsym_checkpoint_unpack
     use fsym_legacy_work, only: legacy_check, legacy_load, legacy_store, legacy_seal, &

@@ -258,6 +258,7 @@ contains
         real(wp), intent(in), contiguous :: q(:, :)   !! positions (d, n)
         real(wp), intent(out), contiguous :: a(:, :)  !! accelerations (d, n)
         integer, intent(inout) :: stat                !! unchanged (ACCEL has no status)
+        associate (unused => stat); end associate   ! the EXTERNAL has no status
         call self%accel(size(q, 1), size(q, 2), q, a)
     end subroutine legacy_acceleration
 
@@ -267,6 +268,7 @@ contains
         real(wp), intent(in), contiguous :: a(:, :)   !! accelerations at q
         real(wp), intent(out), contiguous :: g(:, :)  !! gradient term (d, n)
         integer, intent(inout) :: stat                !! unchanged (GRAD has no status)
+        associate (unused => stat); end associate   ! the EXTERNAL has no status
         call self%grad(size(q, 1), size(q, 2), q, a, g)
     end subroutine legacy_gradient
 
@@ -276,6 +278,7 @@ contains
         real(wp), intent(out) :: omega2               !! largest omega^2
         real(wp), intent(out) :: r                    !! distance where it occurs
         integer, intent(inout) :: stat                !! unchanged (FREQ has no status)
+        associate (unused => stat); end associate   ! the EXTERNAL has no status
         call self%freq(size(q, 1), size(q, 2), q, omega2, r)
     end subroutine legacy_frequency
 

@@ -219,6 +219,7 @@ contains
         real(wp), intent(in), contiguous :: q(:, :)
         real(wp), intent(out), contiguous :: a(:, :)
         integer, intent(inout) :: stat
+        associate (u1 => self, u2 => q, u3 => stat); end associate   ! a zero force
         a = 0.0_wp
     end subroutine counting_acceleration
 
@@ -227,11 +228,13 @@ contains
         real(wp), intent(in), contiguous :: q(:, :), a(:, :)
         real(wp), intent(out), contiguous :: g(:, :)
         integer, intent(inout) :: stat
+        associate (u1 => self, u2 => q, u3 => a, u4 => stat); end associate   ! a zero term
         g = 0.0_wp
     end subroutine counting_gradient
 
     logical function counting_has_gradient(self)
         class(counting_model_t), intent(in) :: self
+        associate (unused => self); end associate
         counting_has_gradient = .true.
     end function counting_has_gradient
 

@@ -97,6 +97,7 @@ contains
         real(wp), intent(in) :: t                         !! time
         integer(ik), intent(in) :: step                   !! steps completed since init
         logical, intent(inout) :: stop                    !! .false. on entry
+        associate (u1 => self, u2 => q, u3 => v, u4 => t, u5 => step, u6 => stop); end associate
     end subroutine observer_ignore
 
     !> Default `observe_model`: calls `observe` (the model is not needed there). Override it
@@ -109,6 +110,7 @@ contains
         real(wp), intent(in) :: t                         !! time
         integer(ik), intent(in) :: step                   !! steps completed since init
         logical, intent(inout) :: stop                    !! .false. on entry
+        associate (unused => model); end associate   ! not needed by `observe`
         call self%observe(q, v, t, step, stop)
     end subroutine observer_pass
 
