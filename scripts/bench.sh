@@ -2,9 +2,9 @@
 # Engine benchmarks (a benchmark, not a test): builds fsym-bench in release mode.
 #   bash scripts/bench.sh --ratios [NREP]   print the ratio lines only (library against
 #                                           hand-written loops and the expert's loop; NREP
-#                                           repetitions, default 31)
+#                                           repetitions, default 101)
 #   bash scripts/bench.sh [NREP]            write doc/benchmarks.md (the ratios and the loops
-#                                           with NREP repetitions, default 31, N-body scaling,
+#                                           with NREP repetitions, default 101, N-body scaling,
 #                                           memory: VmRSS over 1e7 steps and valgrind heap
 #                                           counts for 1e3 vs 1e5 steps); several minutes
 set -euo pipefail
@@ -16,11 +16,11 @@ cpu=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')
 if [ "${1:-}" = "--ratios" ]; then
     fpm build --profile release --flag "$FLAGS" >/dev/null
     echo "cpu $cpu"
-    fpm run --profile release --flag "$FLAGS" fsym-bench -- ratios "${2:-31}" 2>/dev/null \
+    fpm run --profile release --flag "$FLAGS" fsym-bench -- ratios "${2:-101}" 2>/dev/null \
         | grep -E '^(ratio|floor|nspf) '
     exit 0
 fi
-nrep=${1:-31}
+nrep=${1:-101}
 out=doc/benchmarks.md
 tmp=$(mktemp)
 trap 'rm -f "$tmp" "$tmp".*' EXIT
