@@ -63,9 +63,11 @@ contains
             ' `bitwise`: every contender but the expert ends in the same state (q and v);'// &
             ' `expert_dev`: the largest difference of the expert''s end state from the'// &
             ' library''s (built-in model), relative to the largest |q| (|v|), after one'// &
-            ' period (1000 steps; n = 1000: the 200 steps of the run), then after the'// &
-            ' whole run (folding changes the rounding, and a rounding difference in the'// &
-            ' phase of an orbit grows with the steps).'
+            ' period (1000 steps, or the run''s steps if fewer), then after the timed run'// &
+            ' (folding changes the rounding, and a rounding difference in the phase of an'// &
+            ' orbit grows with the steps). A timed run is 5000 steps of one body or 50 steps'// &
+            ' of 1000 bodies: well under a millisecond, so that the minimum over the'// &
+            ' repetitions finds runs no other job interrupted.'
         write (output_unit, '(a)') '', '```'
         do id = 2, 3
             do in = 1, 2

@@ -116,9 +116,11 @@ cat >> "$tmp" <<'NOTES'
   the state of the step's start: a fixed cost per call, large against one body's step (the
   hand loop it is compared with takes all steps in one call); use `run` (with an observer
   every k steps if the state is needed in between).
-- The machine is shared (2 cores, other jobs running): single ratios move by 10-30 % from
-  run to run; the spread columns say how much. Each ratio is min/min over the interleaved
-  repetitions.
+- The machine is shared (2 cores, other jobs running): each ratio is min/min over the
+  interleaved repetitions of short runs (under a millisecond, below a time slice), and
+  the spread columns (interquartile range of the per-repetition ratios) say how much the
+  repetitions disagree; single ratios still move by a few % from one run of the script to
+  the next. The loop and N-body sections time longer runs and are noisier.
 - Time per step outside the force is the kernel's O(n) work; for the N-body force it is
   O(N) against the force's O(N^2).
 NOTES
