@@ -28,7 +28,9 @@ contains
     !> over `nrep` interleaved repetitions, and each against the first of its group.
     subroutine bench_loops(nrep)
         integer, intent(in) :: nrep                  !! repetitions of every contender
-        integer, parameter :: nup = 6, nfo = 4, inner = 2000
+        ! inner: 200 calls per timed run, a fraction of a millisecond (below a time slice of a
+        ! loaded machine, so that the minimum finds runs no other job interrupted)
+        integer, parameter :: nup = 6, nfo = 4, inner = 200
         character(len=*), parameter :: up(nup) = [character(len=26) :: 'in place, aligned', &
             'in place + save, aligned', 'out of place, aligned', 'in place, 16 B off', &
             'in place + save, 16 B off', 'out of place, 16 B off']

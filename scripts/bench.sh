@@ -92,9 +92,10 @@ cat >> "$tmp" <<'NOTES'
 - The saves are the part that costs at 1000 bodies: a step's working set is beyond L1 and
   the update loops run at L2 speed, where a stream of stores is dear (section Loops: an
   update that also stores the old values against a plain one). The `floor ... keep/hand`
-  lines measure them alone (the hand loop plus the same stores), a floor under both
-  `run/hand` and `step/hand`: where `run/hand` is above 1.10 at n = 1000 the floor line
-  of the case is about as high. They are the price of a step that fails leaving the state
+  lines time the hand loop plus the same stores, written as a user would on the caller's
+  arrays: what keeping a step's start costs a loop written by hand. The kernel makes the
+  same stores (into its work array, on a 64-byte boundary), and its `run/hand` lines come
+  out near or below them. They are the price of a step that fails leaving the state
   bitwise as it was.
 - `expert/hand`: the loop an expert writes for this one problem without the library
   (`app/fsym_expertloops.f90`): the Kepler force written into the step, the kick weight
@@ -120,7 +121,8 @@ cat >> "$tmp" <<'NOTES'
   interleaved repetitions of short runs (under a millisecond, below a time slice), and
   the spread columns (interquartile range of the per-repetition ratios) say how much the
   repetitions disagree; single ratios still move by a few % from one run of the script to
-  the next. The loop and N-body sections time longer runs and are noisier.
+  the next. The loop section times short runs too; the N-body section (medians of 5 runs
+  of up to tens of milliseconds each) is stretched by other jobs on a loaded machine.
 - Time per step outside the force is the kernel's O(n) work; for the N-body force it is
   O(N) against the force's O(N^2).
 NOTES
@@ -130,9 +132,11 @@ NOTES
     if [ -n "$scale_pair" ]; then
         echo "  [scaling.md](scaling.md) quotes $scale_pair (the symmetric kernel at N = 4000, one"
         echo "  core), measured on ${scale_cpu:-the CPU it names} by \`bash scripts/scale.sh\`: another"
-        echo "  run, perhaps another machine. The pair cost depends on the CPU (an earlier version"
-        echo "  of this file was made on an Intel Xeon, where it was higher): compare a figure"
-        echo "  only with figures from the CPU it names."
+        echo "  run, perhaps another machine, the minimum over interleaved rounds. The pair cost"
+        echo "  depends on the CPU (an earlier version of this file was made on an Intel Xeon,"
+        echo "  where it was higher) and, for the medians here, on the load (load average after"
+        echo "  this run: $(cut -d' ' -f1-3 /proc/loadavg)): compare a figure only with figures"
+        echo "  from the CPU it names, taken the same way."
     fi
 } >> "$tmp"
 mv "$tmp" "$out"
