@@ -33,7 +33,7 @@ fpm build --profile release --flag "$FLAGS" >/dev/null
     echo
     echo "- Hardware: $cpu (\`/proc/cpuinfo\` model name), $(nproc) cores available, shared"
     echo "  with other jobs while this ran (load average before: $(cut -d' ' -f1-3 /proc/loadavg)):"
-    echo "  every figure in this file comes from this CPU; expect noise of a few 10 %."
+    echo "  every figure in this file comes from this CPU; the spreads say how noisy it was."
     echo "- Compiler: $(gfortran --version | head -1)"
     echo "- Flags: \`$FLAGS\` (\`fpm run --profile release --flag \"$FLAGS\" fsym-bench -- all $nrep\`)"
     echo
