@@ -94,8 +94,8 @@ cat >> "$tmp" <<'NOTES'
   update that also stores the old values against a plain one). The `floor ... keep/hand`
   lines time the hand loop plus the same stores, written as a user would on the caller's
   arrays: what keeping a step's start costs a loop written by hand. The kernel makes the
-  same stores (into its work array, on a 64-byte boundary), and its `run/hand` lines come
-  out near or below them. They are the price of a step that fails leaving the state
+  same stores (into its work array, which starts on a 64-byte boundary), and its
+  `run/hand` lines come out near or below them. They are the price of a step that fails leaving the state
   bitwise as it was.
 - `expert/hand`: the loop an expert writes for this one problem without the library
   (`app/fsym_expertloops.f90`): the Kepler force written into the step, the kick weight
