@@ -6,7 +6,7 @@
 !>
 !> Usage: fsym-bench [all|ratios|loops|nbody|memory|steps] [nsteps or repetitions]
 !>   `ratios [NREP]` the ratio lines (NREP repetitions, default 21); `loops [NREP]` the
-!>   loop lines;
+!>   loop lines; `all [NREP]` ratios and loops with NREP repetitions, then the N-body table;
 !>   `memory NSTEPS` runs FR on the paper orbit for NSTEPS steps and prints VmRSS/VmHWM at
 !>   checkpoints 0, 1e3, 1e4, ...; `steps NSTEPS` the same run without checkpoints (for
 !>   valgrind heap counts: run it with two different NSTEPS, compare the allocations).
@@ -43,8 +43,9 @@ program fsym_bench
     case ('steps')
         call bench_memory(nmem, .false.)
     case default
-        call bench_ratios(21)
-        call bench_loops(21)
+        if (command_argument_count() < 2) nmem = 21
+        call bench_ratios(int(max(1_ik, min(nmem, 1000_ik))))
+        call bench_loops(int(max(1_ik, min(nmem, 1000_ik))))
         call bench_nbody()
     end select
 

@@ -2,8 +2,9 @@
 !> kernel's update loops and a model's force loop cost on this machine, the facts behind
 !> the kernel's design (`scripts/bench.sh`, notes). For arrays of m = 6000 values (48 kB: as
 !> in a step of 1000 bodies, the working set is beyond L1): the update x <- x + s y in place,
-!> the same with the old x stored (the save of a `step`), and out of place into another
-!> array (swap mode), on arrays that start on a 64-byte boundary and on arrays 16 bytes off.
+!> the same with the old x stored (the save of the step's first update of q and of v), and
+!> out of place into another array, on arrays that start on a 64-byte boundary and on arrays
+!> 16 bytes off.
 !> And the Kepler factor of 1000 bodies in the two forms a model writer may choose, one loop
 !> over the bodies or blocks of bodies (factors first, then products), d = 2 and 3: the
 !> benchmark's user model (`fsym_bench_models`) for one form, the other written here; in
@@ -27,7 +28,9 @@ contains
     !> over `nrep` interleaved repetitions, and each against the first of its group.
     subroutine bench_loops(nrep)
         integer, intent(in) :: nrep                  !! repetitions of every contender
-        integer, parameter :: nup = 6, nfo = 4, inner = 2000
+        ! inner: 200 calls per timed run, a fraction of a millisecond (below a time slice of a
+        ! loaded machine, so that the minimum finds runs no other job interrupted)
+        integer, parameter :: nup = 6, nfo = 4, inner = 200
         character(len=*), parameter :: up(nup) = [character(len=26) :: 'in place, aligned', &
             'in place + save, aligned', 'out of place, aligned', 'in place, 16 B off', &
             'in place + save, 16 B off', 'out of place, 16 B off']

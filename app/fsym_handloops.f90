@@ -9,7 +9,9 @@
 !>   step's start there, in the loop of the step's first update of q and of v;
 !> - `inl2_*`, `inl3_*`: n independent Kepler orbits (mu = 1) in d = 2 or 3 with the force
 !>   written out: steps outside, bodies inside (that loop vectorises), each body's state in
-!>   registers through all stages of a step.
+!>   registers through all stages of a step; the expert's loops (`fsym_expertloops`)
+!>   without the folding of the kick coefficient into the force factor (here a = s x, then
+!>   v <- v + k a, as the library computes).
 !>
 !> Coefficients come from the library's scheme tables, and the force is written with the
 !> operations of `kepler_model_t`, so the end states agree bitwise with the library's.
