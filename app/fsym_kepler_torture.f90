@@ -3,7 +3,8 @@
 !> draws, failures, NaN results and the worst relative errors (energy, angular momentum,
 !> LRL vector, phase, velocity; see app/fsym_kepler_check.f90), and a last line
 !> `kepler-torture draws=N failures=F nan=K worst=W tol=T PASS|FAIL`; it exits with status 1
-!> when a draw fails, returns NaN, or an error exceeds the tolerance (default 1e-13).
+!> when a draw fails, returns NaN, or an error exceeds the tolerance (default 1e-13;
+!> scripts/kepler_torture.sh passes 5e-11, see doc/planets.md).
 program fsym_kepler_torture
     use fsym_kinds, only: wp
     use fsym_kepler_check, only: kepler_check_t, kepler_check_draws, KC_CLASSES, KC_CLASS_NAMES
