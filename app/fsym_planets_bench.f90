@@ -12,11 +12,13 @@
 !> the spread (max/min) on a comment line.
 !>
 !> Usage: fsym-planets-bench data-file [years [div [reps]]]
+!>        fsym-planets-bench --orders   (fitted eps and h exponents of every table, lines
+!>                                       `orders METHOD order=N p=P q=Q`, as test_planets)
 program fsym_planets_bench
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
     use fsym
     use fsym_solar_data, only: solar_data_t, read_solar_data
-    use fsym_planets_split, only: split_run, evaluations_per_step
+    use fsym_planets_split, only: split_run, evaluations_per_step, fit_eps_exponents
     implicit none
     character(len=512) :: path, arg
     character(len=256) :: msg
@@ -36,6 +38,10 @@ program fsym_planets_bench
     integer(int64) :: nsteps, ndone, k, t0, t1, rate
     integer :: reps, nmeth, i, j, st, isun, n, nc, rep
     call get_command_argument(1, path)
+    if (path == '--orders') then
+        call print_orders()
+        stop
+    end if
     years = 2000.0_wp; div = 40.0_wp; reps = 5
     if (command_argument_count() >= 2) then
         call get_command_argument(2, arg); read (arg, *) years
@@ -168,6 +174,22 @@ program fsym_planets_bench
         'repetitions): ', maxval(worst / best)
 
 contains
+
+    !> The fitted exponents of every table (see `fit_eps_exponents`).
+    subroutine print_orders()
+        type(scheme_t) :: s, sref
+        real(wp) :: p, pq
+        integer :: i, st
+        names = fsym_catalogue()
+        call fsym_scheme_by_name('SRKN6b', sref)
+        do i = 1, size(names)
+            call fsym_scheme_by_name(trim(names(i)), s)
+            call fit_eps_exponents(s, sref, p, pq, st)
+            if (st /= 0) call fail('a run of '//trim(names(i))//' failed')
+            write (output_unit, '(a,a,a,i0,a,f6.3,a,f6.3)') 'orders ', trim(names(i)), &
+                ' order=', s%order, ' p=', p, ' q=', pq
+        end do
+    end subroutine print_orders
 
     !> Set the state of method i to the start.
     subroutine start(i)
