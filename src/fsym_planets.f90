@@ -16,8 +16,11 @@
 !>   (Duncan, Levison & Lee 1998). H_Kepler = sum_i [m_i |V_i|^2/2 - G m0 m_i/|Q_i|],
 !>   H_interaction = -sum_{i<j} G m_i m_j/|Q_i - Q_j|, and the jump term H_jump = |sum_i m_i
 !>   V_i|^2/(2 m0), which depends on velocities only. The drift is folded as
-!>   jump(dt/2) o Kepler(dt) o jump(dt/2): exact to second order in its own splitting, so
-!>   4th-order tables keep an error term of order eps^2 h^3 from it (see doc/planets.md).
+!>   jump(dt/2) o Kepler(dt) o jump(dt/2): exact to second order in its own splitting.
+!>   As H_jump is of the interaction's relative size eps, that leaves an error eps h^2 in
+!>   every table: measured, all the 4th-order tables fall to p = q = 2 in democratic
+!>   coordinates (doc/planets.md). Jacobi coordinates have no such term: use them for the
+!>   high-order tables.
 !>
 !> The kick is the interaction acceleration (in the state's coordinates; in Jacobi
 !> coordinates the inertial accelerations carried over by the Jacobi map, minus the Kepler
