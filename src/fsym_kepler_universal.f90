@@ -46,6 +46,12 @@ module fsym_kepler_universal
     integer, parameter :: MAX_ITER = 400
     !> Series terms of c2 and c3 for |x| < 1 (the next term is below 1e-19).
     integer, parameter :: NSERIES = 9
+    integer :: ks_
+    !> Reciprocals 1/((2k+1)(2k+2)) and 1/((2k+2)(2k+3)) of the series' term ratios.
+    real(wp), parameter :: RC2(NSERIES) = [(1.0_wp / real((2 * ks_ + 1) * (2 * ks_ + 2), wp), &
+                                            ks_=1, NSERIES)]
+    real(wp), parameter :: RC3(NSERIES) = [(1.0_wp / real((2 * ks_ + 2) * (2 * ks_ + 3), wp), &
+                                            ks_=1, NSERIES)]
 
 contains
 
@@ -219,7 +225,9 @@ contains
                 end if
                 cycle
             end if
-            if (abs(sn - s) <= 4.0_wp * spacing(abs(sn))) then
+            ! Laguerre converges cubically: a correction below 1e-6 |s| leaves an error of
+            ! order 1e-18 |s| in sn, so sn is taken without another iteration
+            if (abs(sn - s) <= 1.0e-6_wp * abs(sn)) then
                 s = sn
                 call g_functions(beta, s, g0, g1, g2, g3)
                 r = r0 * g0 + eta * g1 + gm * g2
@@ -346,8 +354,8 @@ contains
             c2 = 1.0_wp
             c3 = 1.0_wp
             do k = NSERIES, 1, -1
-                c2 = 1.0_wp - x * c2 / real((2 * k + 1) * (2 * k + 2), wp)
-                c3 = 1.0_wp - x * c3 / real((2 * k + 2) * (2 * k + 3), wp)
+                c2 = 1.0_wp - (x * RC2(k)) * c2
+                c3 = 1.0_wp - (x * RC3(k)) * c3
             end do
             c2 = 0.5_wp * c2
             c3 = c3 / 6.0_wp
