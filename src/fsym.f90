@@ -13,6 +13,8 @@ module fsym
     use fsym_kepler
     use fsym_models
     use fsym_nbody
+    use fsym_kepler_universal
+    use fsym_planets
     use fsym_trace
     use fsym_analysis
     use fsym_checks

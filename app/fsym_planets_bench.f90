@@ -1,0 +1,234 @@
+!> Planetary benchmark: the outer solar system (Sun + Jupiter, Saturn, Uranus, Neptune, Pluto;
+!> data file of scripts/planets.sh) over `years` years at h = P_Jupiter/`div`, with every
+!> method of the catalogue run with Kepler drifts (the Wisdom-Holman splitting, Jacobi
+!> coordinates; `[dh]`: democratic heliocentric) and the best kinetic + potential method
+!> (Chin's C on the Newtonian N-body model, `C(T+V)`). One line per method:
+!>
+!>     planets METHOD h=P/40 maxdE=X evals=E ns_per_step=T
+!>
+!> maxdE: max |E(t) - E(0)| / |E(0)| over every step; evals: force evaluations per step with
+!> the first-same-as-last reuse, a gradient counted as one; ns_per_step: wall time per step,
+!> the minimum over `reps` repetitions taken in turn (method after method, then again), with
+!> the spread (max/min) on a comment line.
+!>
+!> Usage: fsym-planets-bench data-file [years [div [reps]]]
+!>        fsym-planets-bench --orders   (fitted eps and h exponents of every table, lines
+!>                                       `orders METHOD order=N p=P q=Q`, as test_planets)
+program fsym_planets_bench
+    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
+    use fsym
+    use fsym_solar_data, only: solar_data_t, read_solar_data
+    use fsym_planets_split, only: split_run, evaluations_per_step, fit_eps_exponents
+    implicit none
+    character(len=512) :: path, arg
+    character(len=256) :: msg
+    type(solar_data_t) :: dat
+    type(planets_model_t) :: jac, dem
+    type(nbody_model_t) :: nb
+    type(integrator_t) :: integ
+    character(len=24), allocatable :: names(:)
+    character(len=24) :: label
+    type(scheme_t), allocatable :: schemes(:)
+    integer, allocatable :: coords(:)
+    real(wp), allocatable :: m(:), xb(:, :), vb(:, :), q0j(:, :), v0j(:, :), q0d(:, :), &
+                             v0d(:, :), q(:, :), v(:, :), a(:, :), g(:, :), qe(:, :), &
+                             qb(:, :), ub(:, :), best(:), worst(:), maxde(:)
+    integer, allocatable :: evals(:)
+    real(wp) :: years, div, pj, h, xcm(3), vcm(3), e0, aj, rj, vj2, mu
+    integer(int64) :: nsteps, ndone, k, t0, t1, rate
+    integer :: reps, nmeth, i, j, st, isun, n, nc, rep
+    call get_command_argument(1, path)
+    if (path == '--orders') then
+        call print_orders()
+        stop
+    end if
+    years = 2000.0_wp; div = 40.0_wp; reps = 5
+    if (command_argument_count() >= 2) then
+        call get_command_argument(2, arg); read (arg, *) years
+    end if
+    if (command_argument_count() >= 3) then
+        call get_command_argument(3, arg); read (arg, *) div
+    end if
+    if (command_argument_count() >= 4) then
+        call get_command_argument(4, arg); read (arg, *) reps
+    end if
+    call read_solar_data(trim(path), dat, st, msg)
+    if (st /= 0) call fail(msg)
+    ! the Sun is the centre; the others in the file's order
+    isun = 0
+    do i = 1, dat%n
+        if (trim(dat%name(i)) == 'Sun') isun = i
+    end do
+    if (isun == 0) call fail('no body named Sun in '//trim(path))
+    n = dat%n - 1
+    allocate (m(n), xb(3, 0:n), vb(3, 0:n))
+    xb(:, 0) = dat%q0(:, isun); vb(:, 0) = dat%v0(:, isun)
+    j = 0
+    do i = 1, dat%n
+        if (i == isun) cycle
+        j = j + 1
+        m(j) = dat%m(i)
+        xb(:, j) = dat%q0(:, i); vb(:, j) = dat%v0(:, i)
+    end do
+    ! P_Jupiter from its heliocentric two-body energy (the first body)
+    mu = dat%g * (dat%m(isun) + m(1))
+    rj = norm2(xb(:, 1) - xb(:, 0)); vj2 = sum((vb(:, 1) - vb(:, 0))**2)
+    aj = 1.0_wp / (2.0_wp / rj - vj2 / mu)
+    pj = 2.0_wp * FSYM_PI * sqrt(aj**3 / mu)
+    h = pj / div
+    nsteps = nint(years * 365.25_wp / h, int64)
+    call jac%init(dat%m(isun), m, dat%g, PLANETS_JACOBI, st, msg)
+    if (st /= 0) call fail(msg)
+    call dem%init(dat%m(isun), m, dat%g, PLANETS_DEMOCRATIC, st, msg)
+    if (st /= 0) call fail(msg)
+    allocate (q0j(3, n), v0j(3, n), q0d(3, n), v0d(3, n), q(3, n), v(3, n), a(3, n), &
+              g(3, n), qe(3, n))
+    call jac%to_state(xb, vb, q0j, v0j, xcm, vcm)
+    call dem%to_state(xb, vb, q0d, v0d, xcm, vcm)
+    ! the methods: the catalogue with Kepler drifts (Jacobi), T2 and C' also democratic
+    nc = size(fsym_catalogue())
+    nmeth = nc + 2
+    allocate (names(nmeth), schemes(nmeth), coords(nmeth), best(nmeth + 1), &
+              worst(nmeth + 1), maxde(nmeth + 1), evals(nmeth + 1))
+    names(1:nc) = fsym_catalogue()
+    coords(1:nc) = PLANETS_JACOBI
+    names(nc + 1) = 'T2'; coords(nc + 1) = PLANETS_DEMOCRATIC
+    names(nc + 2) = 'C'''; coords(nc + 2) = PLANETS_DEMOCRATIC
+    do i = 1, nmeth
+        call fsym_scheme_by_name(trim(names(i)), schemes(i), st, msg)
+        if (st /= 0) call fail(msg)
+        evals(i) = evaluations_per_step(schemes(i))
+    end do
+    ! the kinetic + potential comparator on barycentric coordinates
+    allocate (qb(3, 0:n), ub(3, 0:n))
+    call nb%init([dat%m(isun), m], dat%g, 0.0_wp, st, msg)
+    if (st /= 0) call fail(msg)
+    call integ%init_by_name('C', nb, 3, n + 1, st, msg)
+    if (st /= 0) call fail(msg)
+    evals(nmeth + 1) = evals_tv()
+
+    ! accuracy: energy after every step
+    do i = 1, nmeth
+        call start(i)
+        e0 = model_energy(i)
+        maxde(i) = 0.0_wp
+        do k = 1, nsteps
+            if (coords(i) == PLANETS_JACOBI) then
+                call split_run(schemes(i), jac, q, v, h, 1_int64, a, g, qe, st, ndone)
+            else
+                call split_run(schemes(i), dem, q, v, h, 1_int64, a, g, qe, st, ndone)
+            end if
+            if (st /= 0) call fail('method '//trim(names(i))//' failed')
+            maxde(i) = max(maxde(i), abs((model_energy(i) - e0) / e0))
+        end do
+    end do
+    call start_tv()
+    e0 = nb%energy(qb, ub)
+    maxde(nmeth + 1) = 0.0_wp
+    do k = 1, nsteps
+        call integ%step(nb, qb, ub, h, st, msg)
+        if (st /= 0) call fail(msg)
+        maxde(nmeth + 1) = max(maxde(nmeth + 1), abs((nb%energy(qb, ub) - e0) / e0))
+    end do
+
+    ! speed: whole runs, contenders in turn, min and max over the repetitions
+    best = huge(1.0_wp); worst = 0.0_wp
+    call system_clock(count_rate=rate)
+    do rep = 1, reps
+        do i = 1, nmeth + 1
+            if (i <= nmeth) then
+                call start(i)
+            else
+                call start_tv()
+            end if
+            call system_clock(t0)
+            if (i > nmeth) then
+                call integ%run(nb, qb, ub, h, nsteps, st, msg)
+            else if (coords(i) == PLANETS_JACOBI) then
+                call split_run(schemes(i), jac, q, v, h, nsteps, a, g, qe, st, ndone)
+            else
+                call split_run(schemes(i), dem, q, v, h, nsteps, a, g, qe, st, ndone)
+            end if
+            call system_clock(t1)
+            if (st /= 0) call fail('a timed run failed')
+            best(i) = min(best(i), real(t1 - t0, wp) / real(rate, wp) / real(nsteps, wp))
+            worst(i) = max(worst(i), real(t1 - t0, wp) / real(rate, wp) / real(nsteps, wp))
+        end do
+    end do
+
+    write (output_unit, '(a,f8.2,a,f9.3,a,i0,a,f7.1,a,i0,a)') '# outer solar system: P_J = ', &
+        pj, ' d, h = ', h, ' d, ', nsteps, ' steps (', years, ' years), ', reps, &
+        ' repetitions in turn'
+    do i = 1, nmeth + 1
+        if (i <= nmeth) then
+            label = names(i)
+            if (coords(i) == PLANETS_DEMOCRATIC) label = trim(names(i))//'[dh]'
+        else
+            label = 'C(T+V)'
+        end if
+        write (output_unit, '(a,a,a,i0,a,es9.2,a,i0,a,f0.1,a,f0.2)') 'planets ', trim(label), &
+            ' h=P/', nint(div), ' maxdE=', maxde(i), ' evals=', evals(i), ' ns_per_step=', &
+            1.0e9_wp * best(i)
+    end do
+    write (output_unit, '(a,f0.2)') '# largest spread of the timings (max/min over '// &
+        'repetitions): ', maxval(worst / best)
+
+contains
+
+    !> The fitted exponents of every table (see `fit_eps_exponents`).
+    subroutine print_orders()
+        type(scheme_t) :: s, sref
+        real(wp) :: p, pq
+        integer :: i, st
+        names = fsym_catalogue()
+        call fsym_scheme_by_name('SRKN6b', sref)
+        do i = 1, size(names)
+            call fsym_scheme_by_name(trim(names(i)), s)
+            call fit_eps_exponents(s, sref, p, pq, st)
+            if (st /= 0) call fail('a run of '//trim(names(i))//' failed')
+            write (output_unit, '(a,a,a,i0,a,f6.3,a,f6.3)') 'orders ', trim(names(i)), &
+                ' order=', s%order, ' p=', p, ' q=', pq
+        end do
+    end subroutine print_orders
+
+    !> Set the state of method i to the start.
+    subroutine start(i)
+        integer, intent(in) :: i
+        if (coords(i) == PLANETS_JACOBI) then
+            q = q0j; v = v0j
+        else
+            q = q0d; v = v0d
+        end if
+    end subroutine start
+
+    !> Set the barycentric state of the comparator to the start.
+    subroutine start_tv()
+        real(wp) :: z(3)
+        z = 0.0_wp
+        call jac%from_state(q0j, v0j, z, z, qb, ub)
+        call integ%reset_cache()
+    end subroutine start_tv
+
+    !> Evaluations per step of the comparator's scheme.
+    integer function evals_tv()
+        type(scheme_t) :: s
+        s = integ%scheme()
+        evals_tv = s%nforce + s%ngrad
+    end function evals_tv
+
+    real(wp) function model_energy(i)
+        integer, intent(in) :: i
+        if (coords(i) == PLANETS_JACOBI) then
+            model_energy = jac%energy(q, v)
+        else
+            model_energy = dem%energy(q, v)
+        end if
+    end function model_energy
+
+    subroutine fail(text)
+        character(len=*), intent(in) :: text
+        write (error_unit, '(a)') 'fsym-planets-bench: '//trim(text)
+        error stop 1
+    end subroutine fail
+
+end program fsym_planets_bench

@@ -1,0 +1,381 @@
+!> (The module is not named after its main procedure, `fsym_kepler_drift`, because Fortran
+!> forbids a module and a procedure it exports to share a name; the procedure name is the
+!> public interface other tools call.)
+!>
+!> The Kepler drift: the exact flow of the relative two-body problem H = |v|^2/2 - gm/|q| in
+!> three dimensions over a time dt of any sign, for every orbit class (elliptic,
+!> near-parabolic, parabolic, hyperbolic, almost rectilinear), by universal variables.
+!>
+!> With r0 = |q|, eta = q.v, beta = 2 gm/r0 - |v|^2 (gm/a; > 0 bound) and the Stumpff
+!> functions c_k(x), the universal anomaly s solves Kepler's equation
+!>
+!>     F(s) = r0 G1(s) + eta G2(s) + gm G3(s) - dt = 0,   G_k(s) = s^k c_k(beta s^2),
+!>
+!> whose derivative F'(s) = r(s) = r0 G0 + eta G1 + gm G2 is the radius (> 0), so F increases
+!> strictly and its root is bracketed: [0, +inf) for dt > 0, (-inf, 0] for dt < 0, and, for a
+!> bound orbit whose dt has been reduced modulo the period P to |dt| <= P/2, |s| <= 2 pi /
+!> sqrt(beta) (one whole orbit). The iteration is Laguerre's (order 5, as in Conway's solver)
+!> kept inside the bracket: a step that leaves the bracket, or lands where F is not finite,
+!> is replaced by bisection (or by doubling while the bracket is open), so it cannot wander
+!> and it ends by convergence of s, by a bracket one rounding wide, or by an iteration limit
+!> that is reported. The new state is q' = q + (f - 1) q + g v, v' = fd q + v + (gd - 1) v
+!> with f - 1 = -gm G2/r0, g = r0 G1 + eta G2, fd = -gm G1/(r0 r), gd - 1 = -gm G2/r.
+!>
+!> The Stumpff functions use their series for |x| < 1 and the trigonometric or hyperbolic
+!> closed forms beyond (in the forms 2 sin^2(y/2)/x, (1 - c1)/x that lose at most a factor
+!> ~6 to cancellation there).
+!>
+!> Contract: bad input (gm <= 0 or not finite, a non-finite q, v or dt, r = 0) and a failed
+!> solve (an iteration limit, a non-finite result: only for hyperbolic flights so long that
+!> cosh overflows) return a non-zero status and leave q and v bitwise unchanged; nothing is
+!> allocated; dt = 0 leaves the state unchanged. Accuracy and the random-draw tests are in
+!> doc/planets.md (`scripts/kepler_torture.sh`).
+module fsym_kepler_universal
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use fsym_kinds, only: wp
+    use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_ARGUMENT, FSYM_ERR_NONFINITE_STATE, &
+                           FSYM_ERR_NO_CONVERGENCE
+    implicit none
+    private
+
+    public :: fsym_kepler_drift, fsym_kepler_drift_many, fsym_stumpff
+
+    real(wp), parameter :: TWO_PI = 6.28318530717958647692528676655900577_wp
+    !> Iteration limit of the bracketed Laguerre solve (bisection alone needs < 2200 steps to
+    !> shrink any double bracket to one rounding; Laguerre takes 2 to 6 in practice).
+    integer, parameter :: MAX_ITER = 400
+    !> Series terms of c2 and c3 for |x| < 1 (the next term is below 1e-19).
+    integer, parameter :: NSERIES = 9
+    integer :: ks_
+    !> Reciprocals 1/((2k+1)(2k+2)) and 1/((2k+2)(2k+3)) of the series' term ratios.
+    real(wp), parameter :: RC2(NSERIES) = [(1.0_wp / real((2 * ks_ + 1) * (2 * ks_ + 2), wp), &
+                                            ks_=1, NSERIES)]
+    real(wp), parameter :: RC3(NSERIES) = [(1.0_wp / real((2 * ks_ + 2) * (2 * ks_ + 3), wp), &
+                                            ks_=1, NSERIES)]
+
+contains
+
+    !> Advance the relative two-body orbit (q, v) under -gm/r by dt (any sign). On bad input or
+    !> a failed solve `stat` is non-zero and q, v are bitwise unchanged.
+    subroutine fsym_kepler_drift(gm, q, v, dt, stat)
+        real(wp), intent(in) :: gm         !! gravitational parameter G (M + m), > 0
+        real(wp), intent(inout) :: q(3)    !! relative position, advanced in place
+        real(wp), intent(inout) :: v(3)    !! relative velocity, advanced in place
+        real(wp), intent(in) :: dt         !! time to advance (any sign, any size)
+        integer, intent(out) :: stat       !! 0 on success; FSYM_ERR_* otherwise
+        real(wp) :: q1(3), v1(3)
+        call kepler_step(gm, q, v, dt, q1, v1, stat)
+        if (stat == FSYM_SUCCESS) then
+            q = q1
+            v = v1
+        end if
+    end subroutine fsym_kepler_drift
+
+    !> Advance n bodies (q(:, j), v(:, j)) about one centre, body j with its own gm(j), by the
+    !> same dt. On failure `stat` is that of the first failing body, `ifail` its index, its
+    !> state and those of the bodies after it are unchanged, the bodies before it have been
+    !> advanced (a caller that needs all-or-nothing keeps a copy; the splitting kernel does).
+    pure subroutine fsym_kepler_drift_many(n, gm, q, v, dt, stat, ifail)
+        integer, intent(in) :: n            !! number of bodies
+        real(wp), intent(in) :: gm(n)       !! gravitational parameter of each body's orbit
+        real(wp), intent(inout) :: q(3, n)  !! relative positions, advanced in place
+        real(wp), intent(inout) :: v(3, n)  !! relative velocities, advanced in place
+        real(wp), intent(in) :: dt          !! time to advance (any sign)
+        integer, intent(out) :: stat        !! 0 on success; FSYM_ERR_* of the first failure
+        integer, intent(out) :: ifail       !! index of the first failing body (0: none)
+        real(wp) :: q1(3), v1(3)
+        integer :: j
+        stat = FSYM_SUCCESS
+        ifail = 0
+        do j = 1, n
+            call kepler_step(gm(j), q(:, j), v(:, j), dt, q1, v1, stat)
+            if (stat /= FSYM_SUCCESS) then
+                ifail = j
+                return
+            end if
+            q(:, j) = q1
+            v(:, j) = v1
+        end do
+    end subroutine fsym_kepler_drift_many
+
+    !> The state (q1, v1) at time dt along the orbit through (q, v); `stat` as above.
+    pure subroutine kepler_step(gm, q, v, dt, q1, v1, stat)
+        real(wp), intent(in) :: gm, q(3), v(3), dt
+        real(wp), intent(out) :: q1(3), v1(3)
+        integer, intent(out) :: stat
+        real(wp) :: r0, eta, beta, dtr, period, s, g1, g2, g3, r, fm1, g, fd, gdm1
+        q1 = q
+        v1 = v
+        stat = FSYM_SUCCESS
+        if (.not. (ieee_is_finite(gm) .and. ieee_is_finite(dt))) then
+            stat = FSYM_ERR_BAD_ARGUMENT; return
+        end if
+        if (.not. (all(ieee_is_finite(q)) .and. all(ieee_is_finite(v)))) then
+            stat = FSYM_ERR_NONFINITE_STATE; return
+        end if
+        if (.not. (gm > 0.0_wp)) then
+            stat = FSYM_ERR_BAD_ARGUMENT; return
+        end if
+        r0 = sqrt(q(1)**2 + q(2)**2 + q(3)**2)
+        if (.not. (r0 > 0.0_wp .and. ieee_is_finite(r0))) then
+            stat = FSYM_ERR_BAD_ARGUMENT; return
+        end if
+        if (dt == 0.0_wp) return
+        eta = q(1) * v(1) + q(2) * v(2) + q(3) * v(3)
+        beta = 2.0_wp * gm / r0 - (v(1)**2 + v(2)**2 + v(3)**2)
+        ! near-parabolic: the two terms cancel, so take beta from the exact r and v^2 (the
+        ! period, hence the phase over many orbits, is as accurate as beta)
+        if (abs(beta) < 0.25_wp * gm / r0) beta = compensated_beta(gm, q, v)
+        if (.not. ieee_is_finite(beta)) then
+            stat = FSYM_ERR_NONFINITE_STATE; return
+        end if
+        dtr = dt
+        period = huge(1.0_wp)
+        if (beta > 0.0_wp) then
+            period = TWO_PI * gm / (beta * sqrt(beta))
+            if (ieee_is_finite(period) .and. abs(dt) > 0.5_wp * period) then
+                dtr = dt - period * anint(dt / period)
+                if (dtr == 0.0_wp) return
+            end if
+        end if
+        call solve_universal(gm, r0, eta, beta, dtr, period, s, g1, g2, g3, r, stat)
+        if (stat /= FSYM_SUCCESS) return
+        fm1 = -gm * g2 / r0
+        g = r0 * g1 + eta * g2
+        fd = -gm * g1 / (r0 * r)
+        gdm1 = -gm * g2 / r
+        q1 = q + (fm1 * q + g * v)
+        v1 = v + (fd * q + gdm1 * v)
+        if (.not. (all(ieee_is_finite(q1)) .and. all(ieee_is_finite(v1)))) then
+            q1 = q
+            v1 = v
+            stat = FSYM_ERR_NO_CONVERGENCE
+        end if
+    end subroutine kepler_step
+
+    !> Solve F(s) = dt for the universal anomaly s by Laguerre's iteration kept inside a
+    !> bracket; return s, G1, G2, G3 and r at s.
+    pure subroutine solve_universal(gm, r0, eta, beta, dt, period, s, g1, g2, g3, r, stat)
+        real(wp), intent(in) :: gm, r0, eta, beta, dt, period
+        real(wp), intent(out) :: s, g1, g2, g3, r
+        integer, intent(out) :: stat
+        real(wp), parameter :: LN = 5.0_wp
+        real(wp) :: lo, hi, f, fp, fpp, g0, sn, den, disc, zeta
+        logical :: lo_open, hi_open
+        integer :: it
+        stat = FSYM_SUCCESS
+        zeta = gm - beta * r0
+        ! bracket: F(0) = -dt; a bound orbit's s lies within one whole orbit
+        if (dt > 0.0_wp) then
+            lo = 0.0_wp; lo_open = .false.
+            hi = huge(1.0_wp); hi_open = .true.
+        else
+            hi = 0.0_wp; hi_open = .false.
+            lo = -huge(1.0_wp); lo_open = .true.
+        end if
+        if (beta > 0.0_wp .and. period < huge(1.0_wp)) then
+            if (dt > 0.0_wp) then
+                hi = TWO_PI / sqrt(beta); hi_open = .false.
+            else
+                lo = -TWO_PI / sqrt(beta); lo_open = .false.
+            end if
+        end if
+        ! starting guess: s = dt/r0 - eta dt^2/(2 r0^3), clipped into the bracket
+        s = dt / r0
+        s = s - 0.5_wp * eta * s * s / r0
+        if (.not. (s > lo .and. s < hi) .or. .not. ieee_is_finite(s)) s = dt / r0
+        if (.not. (s > lo .and. s < hi) .or. .not. ieee_is_finite(s)) then
+            if (lo_open .or. hi_open) then
+                s = merge(hi, lo, lo_open)
+                s = s + sign(max(abs(s), tiny(1.0_wp)), s)
+            else
+                s = 0.5_wp * (lo + hi)
+            end if
+        end if
+        do it = 1, MAX_ITER
+            call g_functions(beta, s, g0, g1, g2, g3)
+            f = r0 * g1 + eta * g2 + gm * g3 - dt
+            r = r0 * g0 + eta * g1 + gm * g2
+            if (.not. (ieee_is_finite(f) .and. ieee_is_finite(r))) then
+                ! too far: F overflows only beyond the root (F increases)
+                if (s > 0.0_wp) then
+                    hi = s; hi_open = .false.
+                else
+                    lo = s; lo_open = .false.
+                end if
+                s = next_trial(lo, hi, lo_open, hi_open)
+                cycle
+            end if
+            if (f == 0.0_wp) return
+            if (f < 0.0_wp) then
+                lo = s; lo_open = .false.
+            else
+                hi = s; hi_open = .false.
+            end if
+            fp = r
+            fpp = eta * g0 + zeta * g1
+            disc = sqrt(abs((LN - 1.0_wp)**2 * fp * fp - LN * (LN - 1.0_wp) * f * fpp))
+            den = fp + sign(disc, fp)
+            sn = s - LN * f / den
+            if (.not. ieee_is_finite(sn) .or. .not. (sn > lo .and. sn < hi)) then
+                s = next_trial(lo, hi, lo_open, hi_open)
+                sn = s
+                if (.not. lo_open .and. .not. hi_open) then
+                    if (hi - lo <= 2.0_wp * spacing(max(abs(lo), abs(hi)))) exit
+                end if
+                cycle
+            end if
+            ! Laguerre converges cubically: a correction below 1e-6 |s| leaves an error of
+            ! order 1e-18 |s| in sn, so sn is taken without another iteration
+            if (abs(sn - s) <= 1.0e-6_wp * abs(sn)) then
+                s = sn
+                call g_functions(beta, s, g0, g1, g2, g3)
+                r = r0 * g0 + eta * g1 + gm * g2
+                if (.not. (r > 0.0_wp .and. ieee_is_finite(r))) stat = FSYM_ERR_NO_CONVERGENCE
+                return
+            end if
+            s = sn
+            if (.not. lo_open .and. .not. hi_open) then
+                if (hi - lo <= 2.0_wp * spacing(max(abs(lo), abs(hi)))) exit
+            end if
+        end do
+        if (it > MAX_ITER) then
+            stat = FSYM_ERR_NO_CONVERGENCE
+            return
+        end if
+        ! the bracket is one rounding wide: s is the root to working precision
+        call g_functions(beta, s, g0, g1, g2, g3)
+        r = r0 * g0 + eta * g1 + gm * g2
+        if (.not. (r > 0.0_wp .and. ieee_is_finite(r))) stat = FSYM_ERR_NO_CONVERGENCE
+
+    end subroutine solve_universal
+
+    !> beta = 2 gm/|q| - |v|^2 in double-double arithmetic (Dekker's exact products, Knuth's
+    !> exact sums; no fused multiply-add), rounded once: accurate to a few units of the last
+    !> place of beta itself even when the two terms cancel.
+    pure real(wp) function compensated_beta(gm, q, v) result(beta)
+        real(wp), intent(in) :: gm, q(3), v(3)
+        real(wp) :: sqh, sql, svh, svl, r, rl, x, xl, p, e
+        integer :: i
+        sqh = 0.0_wp; sql = 0.0_wp; svh = 0.0_wp; svl = 0.0_wp
+        do i = 1, 3
+            call two_prod(q(i), q(i), p, e)
+            call dd_add(sqh, sql, p, e)
+            call two_prod(v(i), v(i), p, e)
+            call dd_add(svh, svl, p, e)
+        end do
+        r = sqrt(sqh)
+        call two_prod(r, r, p, e)
+        rl = (((sqh - p) - e) + sql) / (2.0_wp * r)
+        x = 2.0_wp * gm / r
+        call two_prod(x, r, p, e)
+        xl = (((2.0_wp * gm - p) - e) - x * rl) / r
+        call two_sum(x, -svh, p, e)
+        beta = p + ((e + xl) - svl)
+    end function compensated_beta
+
+    !> p + e = a b exactly (Dekker, with Veltkamp's splitting).
+    pure subroutine two_prod(a, b, p, e)
+        real(wp), intent(in) :: a, b
+        real(wp), intent(out) :: p, e
+        real(wp), parameter :: SPLITTER = 134217729.0_wp
+        real(wp) :: c, ah, al, bh, bl
+        c = SPLITTER * a
+        ah = c - (c - a)
+        al = a - ah
+        c = SPLITTER * b
+        bh = c - (c - b)
+        bl = b - bh
+        p = a * b
+        e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
+    end subroutine two_prod
+
+    !> s + e = a + b exactly (Knuth).
+    pure subroutine two_sum(a, b, s, e)
+        real(wp), intent(in) :: a, b
+        real(wp), intent(out) :: s, e
+        real(wp) :: bb
+        s = a + b
+        bb = s - a
+        e = (a - (s - bb)) + (b - bb)
+    end subroutine two_sum
+
+    !> (h, l) <- (h, l) + (p, e), double-double.
+    pure subroutine dd_add(h, l, p, e)
+        real(wp), intent(inout) :: h, l
+        real(wp), intent(in) :: p, e
+        real(wp) :: s, t
+        call two_sum(h, p, s, t)
+        t = t + (l + e)
+        h = s + t
+        l = t - (h - s)
+    end subroutine dd_add
+
+    !> The next trial point of a bracket [lo, hi]: its midpoint when closed, else a doubling
+    !> outwards from the closed end.
+    pure real(wp) function next_trial(lo, hi, lo_open, hi_open) result(s)
+        real(wp), intent(in) :: lo, hi
+        logical, intent(in) :: lo_open, hi_open
+        if (.not. lo_open .and. .not. hi_open) then
+            s = lo + 0.5_wp * (hi - lo)
+        else if (hi_open) then
+            s = 2.0_wp * max(lo, tiny(1.0_wp))
+            if (.not. ieee_is_finite(s)) s = huge(1.0_wp)
+        else
+            s = 2.0_wp * min(hi, -tiny(1.0_wp))
+            if (.not. ieee_is_finite(s)) s = -huge(1.0_wp)
+        end if
+    end function next_trial
+
+    !> G_k(s) = s^k c_k(beta s^2), k = 0..3.
+    pure subroutine g_functions(beta, s, g0, g1, g2, g3)
+        real(wp), intent(in) :: beta, s
+        real(wp), intent(out) :: g0, g1, g2, g3
+        real(wp) :: c0, c1, c2, c3
+        call fsym_stumpff(beta * s * s, c0, c1, c2, c3)
+        g0 = c0
+        g1 = s * c1
+        g2 = s * s * c2
+        g3 = s * s * s * c3
+    end subroutine g_functions
+
+    !> Stumpff functions c0 .. c3 of x (c0 = cos sqrt x, c1 = sin sqrt x / sqrt x, c2 = (1 -
+    !> c0)/x, c3 = (1 - c1)/x, continued through x = 0 and to x < 0 by cosh, sinh).
+    pure elemental subroutine fsym_stumpff(x, c0, c1, c2, c3)
+        real(wp), intent(in) :: x      !! argument beta s^2
+        real(wp), intent(out) :: c0    !! c0(x)
+        real(wp), intent(out) :: c1    !! c1(x)
+        real(wp), intent(out) :: c2    !! c2(x)
+        real(wp), intent(out) :: c3    !! c3(x)
+        real(wp) :: y, t
+        integer :: k
+        if (abs(x) < 1.0_wp) then
+            ! c2 = sum (-x)^k/(2k+2)!, c3 = sum (-x)^k/(2k+3)!, by Horner from the last term
+            c2 = 1.0_wp
+            c3 = 1.0_wp
+            do k = NSERIES, 1, -1
+                c2 = 1.0_wp - (x * RC2(k)) * c2
+                c3 = 1.0_wp - (x * RC3(k)) * c3
+            end do
+            c2 = 0.5_wp * c2
+            c3 = c3 / 6.0_wp
+            c0 = 1.0_wp - x * c2
+            c1 = 1.0_wp - x * c3
+        else if (x > 0.0_wp) then
+            y = sqrt(x)
+            c0 = cos(y)
+            c1 = sin(y) / y
+            t = sin(0.5_wp * y)
+            c2 = 2.0_wp * t * t / x
+            c3 = (1.0_wp - c1) / x
+        else
+            y = sqrt(-x)
+            c0 = cosh(y)
+            c1 = sinh(y) / y
+            t = sinh(0.5_wp * y)
+            c2 = -2.0_wp * t * t / x
+            c3 = (1.0_wp - c1) / x
+        end if
+    end subroutine fsym_stumpff
+
+end module fsym_kepler_universal
