@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# The planetary race (issue 22, item 2): REBOUND's WHFast, WHFast + corrector 17, WHCKM, WHCKL,
+# SABA(10,6,4), leapfrog order 4 and IAS15 (the reference) against the library's Kepler-drift
+# methods, interleaved, on the outer and the inner solar system, 10^4 orbits of the innermost
+# planet per run. Writes doc/planets-race-results.md, doc/planets-race.csv and
+# doc/figures/planets-race.{png,pdf}; definitions and the library contract: doc/planets-race.md.
+# About 15 minutes on 2 shared cores (the REBOUND half alone about 7).
+#   bash scripts/planets.sh [planets_race.py options, e.g. --reps 5 or --quick]
+# Environment:
+#   FSYM_RACE_VENV         the race's own Python environment (default
+#                          ~/.cache/forward-symplectic/race-venv), REBOUND pinned below
+#   FSYM_RACE_CMD          the library command template (default: the fsym-planets program built
+#                          here with fpm, when fpm.toml has it; else planets_race.py's default)
+#   FSYM_RACE_LIB_METHODS  library methods (comma-separated), FSYM_RACE_LIB_KS their steps P/k
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/setup.sh
+REBOUND_VERSION=5.2.2
+venv=${FSYM_RACE_VENV:-$HOME/.cache/forward-symplectic/race-venv}
+if ! "$venv/bin/python" -c "import rebound, numpy, matplotlib
+assert rebound.__version__ == '$REBOUND_VERSION'" >/dev/null 2>&1; then
+    echo "[planets] installing REBOUND $REBOUND_VERSION, numpy and matplotlib into $venv" >&2
+    python3 -m venv "$venv"
+    "$venv/bin/pip" install -q "rebound==$REBOUND_VERSION" "numpy==2.4.6" "matplotlib==3.11.2"
+fi
+# the library side: build fsym-planets once and call the executable directly (fpm run would
+# re-check the build before every one of the race's runs); without it the race says so
+if [ -z "${FSYM_RACE_CMD:-}" ] && grep -q '^name = "fsym-planets"' fpm.toml; then
+    flags="-std=f2008 -O2 -ffp-contract=off"
+    if fpm build --profile release --flag "$flags" >&2; then
+        exe=$(fpm run --profile release --flag "$flags" fsym-planets --runner echo | tail -n 1)
+        args="state={state} system={system} method={method} h={h} nsteps={nsteps}"
+        export FSYM_RACE_CMD="$exe race $args samples={samples}"
+    else
+        export FSYM_RACE_MISSING="fpm could not build fsym-planets"
+    fi
+elif [ -z "${FSYM_RACE_CMD:-}" ]; then
+    export FSYM_RACE_MISSING="fpm.toml has no fsym-planets executable yet (issue 21)"
+fi
+export FSYM_RACE_COMMAND="bash scripts/planets.sh${*:+ $*}"
+exec "$venv/bin/python" scripts/planets_race.py "$@"
