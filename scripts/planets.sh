@@ -5,7 +5,8 @@
 # planet per run. Writes doc/planets-race-results.md, doc/planets-race.csv and
 # doc/figures/planets-race.{png,pdf}; definitions and the library contract: doc/planets-race.md.
 # About 15 minutes on 2 shared cores (the REBOUND half alone about 7).
-#   bash scripts/planets.sh [planets_race.py options, e.g. --reps 5 or --quick]
+#   bash scripts/planets.sh [planets_race.py options, e.g. --reps 5, or --smoke: 100 orbits]
+#   bash scripts/planets.sh --quick   the library alone, without REBOUND (issue 21's program)
 # Environment:
 #   FSYM_RACE_VENV         the race's own Python environment (default
 #                          ~/.cache/forward-symplectic/race-venv), REBOUND pinned below
@@ -15,6 +16,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/setup.sh
+if [ "${1:-}" = --quick ]; then
+    # the quick mode is the library's (issue 21: fsym-planets, no REBOUND); not on this branch
+    echo "[planets] --quick runs the library's planetary program (issue 21), not built here" >&2
+    exit 2
+fi
 REBOUND_VERSION=5.2.2
 venv=${FSYM_RACE_VENV:-$HOME/.cache/forward-symplectic/race-venv}
 if ! "$venv/bin/python" -c "import rebound, numpy, matplotlib

@@ -6,7 +6,7 @@ Run by `bash scripts/planets.sh` (full mode), which installs REBOUND into the ra
 environment and resolves the library command. Direct use:
 
     python scripts/planets_race.py [--orbits N] [--reps R] [--samples S] [--systems outer,inner]
-                                   [--quick] [--out-dir out/race] [--doc-dir doc]
+                                   [--smoke] [--out-dir out/race] [--doc-dir doc]
 
 Systems (heliocentric start: the Sun at the origin at rest, planets heliocentric):
   outer  Sun + Jupiter, Saturn, Uranus, Neptune, Pluto: ../shared/data/outer_solar_system.txt
@@ -286,10 +286,17 @@ def load_systems(names, orbits):
 # REBOUND side
 # ------------------------------------------------------------------------------------------
 def make_sim(rebound, sysd, settings, h):
+    return new_sim(rebound, sysd.g, sysd.m_sun, [(m, s) for _, m, s in sysd.planets],
+                   settings, h)
+
+
+def new_sim(rebound, g, m_sun, planets, settings, h):
+    """A REBOUND simulation: the Sun at rest at the origin, planets [(m, [x y z vx vy vz])]
+    heliocentric, moved to the barycentre, the integrator set from `settings`."""
     sim = rebound.Simulation()
-    sim.G = sysd.g
-    sim.add(m=sysd.m_sun)
-    for _, m, s in sysd.planets:
+    sim.G = g
+    sim.add(m=m_sun)
+    for m, s in planets:
         sim.add(m=m, x=s[0], y=s[1], z=s[2], vx=s[3], vy=s[4], vz=s[5])
     sim.move_to_com()
     cfg = dict(settings)
@@ -708,7 +715,11 @@ def write_markdown(path, results, args, lib, info):
         w.append("| side | method | h = P/k | evals/step | max \\|dE/E\\| | phase_in (rad) | "
                  "phase_out (rad) | us/orbit | ns/step | spread |")
         w.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
-        for c in sorted(res["contenders"], key=lambda c: (c.side, c.method, c.k)):
+        order = {}
+        for c in res["contenders"]:
+            order.setdefault((c.side, c.method), len(order))
+        for c in sorted(res["contenders"],
+                        key=lambda c: (c.side != "REBOUND", order[(c.side, c.method)], c.k)):
             if not c.seconds:
                 w.append(f"| {c.side} | {c.method} | {c.k} | | failed: {c.error} | | | | | |")
                 continue
@@ -766,6 +777,38 @@ def fixed_step_targets(res, lib_missing):
     return w + [""]
 
 
+def check_contract(args):
+    """Runs scripts/planets_race_double.py (REBOUND's WHCKL behind the library contract) against
+    the harness's own WHCKL on both systems (100 orbits): the state file, the template and the
+    line parsing must reproduce the harness's numbers (energy error bitwise; phases to 1e-12
+    relative or 1e-15 rad, since the reference goes through the file's inertial frame). Exit
+    status 1 if not."""
+    import rebound
+    out_dir = os.path.join(args.out_dir, "contract-check")
+    os.makedirs(out_dir, exist_ok=True)
+    args.orbits, args.reps, args.only = 100, 1, ["WHCKL"]
+    double = os.path.join(HERE, "planets_race_double.py")
+    lib = dict(cmd=f"{shlex.quote(sys.executable)} {shlex.quote(double)} state={{state}} "
+               "system={system} method={method} h={h} nsteps={nsteps} samples={samples} "
+               "orbits={orbits}", methods=["WHCKL"], ks=[10, 40], missing=None, warmed=False)
+    bad = 0
+    for sysd in load_systems(["outer", "inner"], args.orbits):
+        res = run_system(rebound, sysd, args, lib, out_dir)
+        if lib["missing"]:
+            say(f"contract check FAILED: {lib['missing']}")
+            return 1
+        own = {c.k: c for c in res["contenders"] if c.side == "REBOUND"}
+        for c in (c for c in res["contenders"] if c.side == "library"):
+            o = own[c.k]
+            ok = (c.error is None and c.acc[0] == o.acc[0] and
+                  all(abs(a - b) <= 1e-12 * abs(b) + 1e-15 for a, b in zip(c.acc[1:], o.acc[1:])))
+            bad += not ok
+            say(f"contract check {sysd.name} k={c.k}: {'ok' if ok else 'MISMATCH'} "
+                f"(double {c.acc}, harness {o.acc}, error {c.error})")
+    say("contract check " + ("passed" if bad == 0 else f"FAILED ({bad} mismatches)"))
+    return 1 if bad else 0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--orbits", type=int, default=10000)
@@ -776,10 +819,14 @@ def main():
     ap.add_argument("--timeout", type=float, default=900.0)
     ap.add_argument("--out-dir", default=os.path.join(ROOT, "out", "race"))
     ap.add_argument("--doc-dir", default=os.path.join(ROOT, "doc"))
-    ap.add_argument("--quick", action="store_true",
+    ap.add_argument("--smoke", action="store_true",
                     help="100 orbits, 1 repetition, output under out/race (a smoke test)")
+    ap.add_argument("--check-contract", action="store_true",
+                    help="run the test double through the library contract and check it")
     args = ap.parse_args()
-    if args.quick:
+    if args.check_contract:
+        sys.exit(check_contract(args))
+    if args.smoke:
         args.orbits, args.reps, args.doc_dir = 100, 1, args.out_dir
     args.only = [s for s in args.only.split(",") if s]
     import rebound
