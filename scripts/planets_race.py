@@ -677,8 +677,10 @@ def git_commit():
     try:
         c = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True,
                            text=True, check=True).stdout.strip()
-        dirty = subprocess.run(["git", "status", "--porcelain"], cwd=ROOT, capture_output=True,
-                               text=True).stdout.strip()
+        # the race's own outputs do not count as a modification of the code that made them
+        dirty = subprocess.run(["git", "status", "--porcelain", "--", ".",
+                                ":!doc/planets-race*", ":!doc/figures/planets-race*"],
+                               cwd=ROOT, capture_output=True, text=True).stdout.strip()
         return c + (" (modified)" if dirty else "")
     except (OSError, subprocess.CalledProcessError):
         return "unknown"
