@@ -432,9 +432,10 @@ def library_run(template, sysd, method, k, samples, state_path, timeout):
                 return None, f"timed out after {timeout} s"
             say(f"  {sysd.name} library {method} k={k}: running "
                 f"({time.perf_counter() - t0:.0f} s)")
+    wall = time.perf_counter() - t0
     if proc.returncode != 0:
         tail = (err or out).strip().splitlines()[-3:]
-        return None, f"exit {proc.returncode}: " + " | ".join(tail)
+        return None, f"exit {proc.returncode}: " + " / ".join(t.strip() for t in tail)
     rec = parse_race_line(out)
     if rec is None:
         return None, "no valid `race ...` line in its output"
@@ -442,6 +443,10 @@ def library_run(template, sysd, method, k, samples, state_path, timeout):
         return None, f"line names {rec['system']}/{rec['method']}, not {sysd.name}/{method}"
     if abs(rec["h"] - sysd.step(k)) > 1e-12 * sysd.step(k):
         return None, f"line says h={rec['h']!r}, asked {sysd.step(k)!r}"
+    if abs(rec["orbits"] - sysd.orbits) > 1e-3 * sysd.orbits:
+        return None, f"line says orbits={rec['orbits']!r}, the span is {sysd.orbits} orbits"
+    if not 0.0 < rec["seconds"] <= wall:
+        return None, f"line says seconds={rec['seconds']!r}, the command took {wall:.3g} s"
     return rec, None
 
 
@@ -701,7 +706,8 @@ def write_markdown(path, results, args, lib, info):
              f"samples; {args.reps} repetitions interleaved (each repetition runs every "
              "contender once, in turn); time = minimum over the repetitions, spread = max/min - 1.")
     if lib["missing"]:
-        w.append(f"- **Library side missing**: `{lib['cmd']}` failed ({lib['missing']}). Only "
+        w.append(f"- **Library side missing**: `{lib['cmd']}` failed "
+                 f"({lib['missing'].replace('|', chr(92) + '|')}). Only "
                  "REBOUND's numbers are shown; no library number is invented.")
     else:
         w.append(f"- Library command: `{lib['cmd']}`; methods {', '.join(lib['methods'])}.")
@@ -724,7 +730,8 @@ def write_markdown(path, results, args, lib, info):
         for c in sorted(res["contenders"],
                         key=lambda c: (c.side != "REBOUND", order[(c.side, c.method)], c.k)):
             if not c.seconds:
-                w.append(f"| {c.side} | {c.method} | {c.k} | | failed: {c.error} | | | | | |")
+                why = c.error.replace("|", "\\|")
+                w.append(f"| {c.side} | {c.method} | {c.k} | | failed: {why} | | | | | |")
                 continue
             n = sysd.nsteps(c.k)
             ev = "" if c.evals is None else f"{c.evals:g}"
