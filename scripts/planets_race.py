@@ -42,10 +42,12 @@ DEFAULT_LIB_CMD below), a template split like a shell line whose tokens may cont
 double, so they parse exactly). The command must print, among any other lines, exactly one line
 
     race system=S method=M h=H maxdE=X phase_in=Y phase_out=Z seconds=T orbits=N [evals=E]
+         [cpu_seconds=C]
 
 (key=value tokens separated by spaces, in any order after `race`; S and M as given; H, X, Y, Z,
 T, N reals in any Fortran or C format; evals optional: force-equivalent evaluations per step with
-first-same-as-last reuse, a gradient counted as one) and exit 0. The quantities are defined as
+first-same-as-last reuse, a gradient counted as one; cpu_seconds=C optional: the process CPU
+time of the same loop) and exit 0. The quantities are defined as
 above; the program integrates nsteps steps of size h from the initial state of the state file and
 computes the phases against the reference state of the same file. The library methods are
 listed in FSYM_RACE_LIB_METHODS (comma-separated; default DEFAULT_LIB_METHODS below); their steps
@@ -369,6 +371,7 @@ def rebound_run(rebound, sysd, label, settings, k, samples, ref):
     per = n // samples
     sim = make_sim(rebound, sysd, settings, sysd.step(k))
     e0, maxde = sim.energy(), 0.0
+    c0 = time.process_time()
     t0 = last = time.perf_counter()
     for j in range(samples):
         sim.steps(per)
@@ -379,11 +382,13 @@ def rebound_run(rebound, sysd, label, settings, k, samples, ref):
             say(f"  {sysd.name} {label} k={k}: {100.0 * (j + 1) / samples:.0f}%")
             last = now
     secs = time.perf_counter() - t0
+    cpu = time.process_time() - c0
     if abs(sim.t - sysd.span) > 1e-9 * sysd.span:
         raise RuntimeError(f"{label}: ended at t = {sim.t}, not {sysd.span}")
     r = helio(sim)
     return dict(maxdE=maxde, phase_in=phase_angle(r[0], ref["helio"][0]),
-                phase_out=phase_angle(r[-1], ref["helio"][-1]), seconds=secs)
+                phase_out=phase_angle(r[-1], ref["helio"][-1]), seconds=secs,
+                cpu_seconds=cpu)
 
 
 # ------------------------------------------------------------------------------------------
@@ -404,7 +409,8 @@ def parse_race_line(text):
             out[key] = val
     if any(k not in out for k in REQUIRED):
         return None
-    for key in ("h", "maxdE", "phase_in", "phase_out", "seconds", "orbits", "evals"):
+    for key in ("h", "maxdE", "phase_in", "phase_out", "seconds", "orbits", "evals",
+                "cpu_seconds"):
         if key in out:
             out[key] = float(out[key].lower().replace("d", "e"))
     return out
@@ -457,7 +463,7 @@ class Contender:
     def __init__(self, side, method, k, settings=None, evals=None):
         self.side, self.method, self.k, self.settings, self.evals = side, method, k, settings, \
             evals
-        self.seconds, self.acc, self.error = [], None, None
+        self.seconds, self.cpu, self.acc, self.error = [], [], None, None
         self.mismatch = False
 
     def record(self, rec):
@@ -467,6 +473,8 @@ class Contender:
         elif acc != self.acc:
             self.mismatch = True
         self.seconds.append(rec["seconds"])
+        if rec.get("cpu_seconds") is not None:
+            self.cpu.append(rec["cpu_seconds"])
         if rec.get("evals") is not None:
             self.evals = rec["evals"]
 
@@ -536,6 +544,10 @@ def run_system(rebound, sysd, args, lib, out_dir):
 # ------------------------------------------------------------------------------------------
 def tpo(c, sysd):
     return min(c.seconds) / sysd.orbits
+
+
+def cpu_tpo(c, sysd):
+    return f"{1e6 * min(c.cpu) / sysd.orbits:.2f}" if c.cpu else ""
 
 
 def spread(c):
@@ -612,23 +624,26 @@ def write_csv(path, results):
         w = csv.writer(f)
         w.writerow(["system", "side", "method", "k", "h_days", "nsteps", "orbits",
                     "evals_per_step", "maxdE", "phase_in", "phase_out", "seconds_min",
-                    "seconds_max", "us_per_orbit", "ns_per_step", "seconds_all", "error"])
+                    "seconds_max", "us_per_orbit", "ns_per_step", "seconds_all",
+                    "cpu_seconds_min", "cpu_seconds_all", "error"])
         for res in results:
             sysd = res["system"]
             w.writerow([sysd.name, "reference", "IAS15", "", "", res["ref"]["steps"],
                         sysd.orbits, "", f"{res['ref']['maxdE']:.6e}", 0.0, 0.0,
                         f"{res['ref']['seconds']:.6f}", f"{res['ref']['seconds']:.6f}",
                         f"{1e6 * res['ref']['seconds'] / sysd.orbits:.6g}", "",
-                        f"{res['ref']['seconds']:.6f}", ""])
+                        f"{res['ref']['seconds']:.6f}", "", "", ""])
             for c in res["contenders"]:
                 n = sysd.nsteps(c.k)
                 if c.seconds:
                     row = [f"{c.acc[0]:.6e}", f"{c.acc[1]:.6e}", f"{c.acc[2]:.6e}",
                            f"{min(c.seconds):.6f}", f"{max(c.seconds):.6f}",
                            f"{1e6 * tpo(c, sysd):.6g}", f"{1e9 * min(c.seconds) / n:.6g}",
-                           ";".join(f"{s:.6f}" for s in c.seconds)]
+                           ";".join(f"{s:.6f}" for s in c.seconds),
+                           f"{min(c.cpu):.6f}" if c.cpu else "",
+                           ";".join(f"{s:.6f}" for s in c.cpu)]
                 else:
-                    row = [""] * 8
+                    row = [""] * 10
                 w.writerow([sysd.name, c.side, c.method, c.k, repr(sysd.step(c.k)), n,
                             sysd.orbits, "" if c.evals is None else f"{c.evals:g}"] + row +
                            [c.error or ""])
@@ -704,7 +719,9 @@ def write_markdown(path, results, args, lib, info):
              f"{info['wall']:.0f} s.")
     w.append(f"- Each run: {args.orbits} orbits of the innermost planet, {args.samples} energy "
              f"samples; {args.reps} repetitions interleaved (each repetition runs every "
-             "contender once, in turn); time = minimum over the repetitions, spread = max/min - 1.")
+             "contender once, in turn); time = minimum over the repetitions, spread = max/min - 1; "
+             "CPU us/orbit: the minimum of the process CPU time of the same loop (not used for "
+             "the targets; a cross-check of the wall time on a loaded machine).")
     if lib["missing"]:
         w.append(f"- **Library side missing**: `{lib['cmd']}` failed "
                  f"({lib['missing'].replace('|', chr(92) + '|')}). Only "
@@ -722,8 +739,8 @@ def write_markdown(path, results, args, lib, info):
                  f"with epsilon 1e-10 against it): phase_in {res['floor'][0]:.1e}, phase_out "
                  f"{res['floor'][1]:.1e} rad.\n")
         w.append("| side | method | h = P/k | evals/step | max \\|dE/E\\| | phase_in (rad) | "
-                 "phase_out (rad) | us/orbit | ns/step | spread |")
-        w.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+                 "phase_out (rad) | us/orbit | ns/step | spread | CPU us/orbit |")
+        w.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
         order = {}
         for c in res["contenders"]:
             order.setdefault((c.side, c.method), len(order))
@@ -731,14 +748,15 @@ def write_markdown(path, results, args, lib, info):
                         key=lambda c: (c.side != "REBOUND", order[(c.side, c.method)], c.k)):
             if not c.seconds:
                 why = c.error.replace("|", "\\|")
-                w.append(f"| {c.side} | {c.method} | {c.k} | | failed: {why} | | | | | |")
+                w.append(f"| {c.side} | {c.method} | {c.k} | | failed: {why} | | | | | | |")
                 continue
             n = sysd.nsteps(c.k)
             ev = "" if c.evals is None else f"{c.evals:g}"
             flag = " (accuracy differed between repetitions)" if c.mismatch else ""
             w.append(f"| {c.side} | {c.method}{flag} | {c.k} | {ev} | {c.acc[0]:.2e} | "
                      f"{c.acc[1]:.2e} | {c.acc[2]:.2e} | {1e6 * tpo(c, sysd):.2f} | "
-                     f"{1e9 * min(c.seconds) / n:.0f} | {100 * spread(c):.1f}% |")
+                     f"{1e9 * min(c.seconds) / n:.0f} | {100 * spread(c):.1f}% | "
+                     f"{cpu_tpo(c, sysd)} |")
         w.append("")
         for metric, label, fl in (("maxdE", "max |dE/E|", None),
                                   ("phase_in", f"phase error of {sysd.inner_name}",
