@@ -4,7 +4,7 @@
 # methods, interleaved, on the outer and the inner solar system, 10^4 orbits of the innermost
 # planet per run. Writes doc/planets-race-results.md, doc/planets-race.csv and
 # doc/figures/planets-race.{png,pdf}; definitions and the library contract: doc/planets-race.md.
-# About 15 minutes on 2 shared cores (the REBOUND half alone about 7).
+# Meant to fit in ~15 min on 2 shared cores (results page: the wall time of the run).
 #   bash scripts/planets.sh [planets_race.py options, e.g. --reps 5, or --smoke: 100 orbits]
 #   bash scripts/planets.sh --quick   the library alone, without REBOUND (issue 21's program)
 # Environment:
