@@ -146,6 +146,12 @@ if command -v fpm > /dev/null 2>&1; then    # fsym-solar (HDF5) killed and resum
     if [ $r -eq 77 ]; then echo "[full-disk] skipped: no tmpfs" >> "$tmp/disk.txt"
     elif [ $r -ne 0 ]; then rc=1; fi
 fi
+# keep the raw outputs (build/ is git-ignored): the page can be rendered again from them
+keep=$root/build/reliability-last
+rm -rf "$keep"; mkdir -p "$keep"
+cp "$report" "$tmp"/status.txt "$tmp"/solar.txt "$tmp"/guard.txt "$tmp"/mpi.txt \
+    "$tmp"/files.txt "$tmp"/disk.txt "$keep/" 2>/dev/null || true
+cp "$tmp"/planted.txt "$tmp"/alloc.log "$keep/" 2>/dev/null || true
 python3 "$root/scripts/reliability.py" --fuzz "$report" --status "$tmp/status.txt" \
     --solar "$tmp/solar.txt" --alloc "$tmp/alloc.log" --guard "$tmp/guard.txt" \
     --planted "$tmp/planted.txt" --mpi "$tmp/mpi.txt" --files "$tmp/files.txt" \
