@@ -111,6 +111,7 @@ res=$out/results.txt
     echo "cpu $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs) cores=$(nproc)"
     echo "load_before $(cut -d' ' -f1-3 /proc/loadavg)"
     echo "compiler $(gfortran -dumpfullversion) mpi $(mpirun --version | head -1)"
+    echo "commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$([ -n "$(git status --porcelain --untracked-files=no 2>/dev/null)" ] && echo ' (modified)')"
     echo "check threads: bitwise identical to serial"
     echo "check mpi: bitwise identical to serial"
     "$sbench" mode=cost n=8
