@@ -84,7 +84,7 @@ contains
         integer, intent(inout) :: stat                !! 0 on entry; non-zero = failure
         g = 0.0_wp
         stat = 1
-        associate (unused_self => self, unused_q => q, unused_a => a); end associate   ! the interface's arguments
+        associate (unused_self => self, unused_q => q, unused_a => a); end associate
     end subroutine force_no_gradient
 
     !> Whether `gradient` is provided (default: no).

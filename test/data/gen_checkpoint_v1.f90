@@ -6,6 +6,8 @@
 module gen_models
     use fsym, only: kepler_model_t
     implicit none
+    private
+    public :: kernel_kepler_t
     !> The Kepler model without its fused stepper: every step through the kernel.
     type, extends(kepler_model_t) :: kernel_kepler_t
     contains
