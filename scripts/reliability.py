@@ -256,8 +256,8 @@ def main():
                             "a `fraction` below 1 or a smaller step is the user's choice for "
                             "accuracy). " % ", ".join("%s %s" % (w[1], w[4]) for w in ran))
                            if ran else "",
-                           ("Refused: %s (the chord of a drift passes closer than its end "
-                            "points)." % ", ".join(w[1] for w in stopped)) if stopped else ""))
+                           ("Refused by the guard: %s (status 20)." % ", ".join(
+                               w[1] for w in stopped)) if stopped else ""))
 
     if a.mpi:
         rows = read_lines(a.mpi) if a.mpi else []
