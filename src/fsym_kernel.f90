@@ -135,7 +135,7 @@ contains
             end if
             if (moved) call fsym_kernel_invalidate(ks)
         end if
-        flow = model%has_drift(); timed = .false.
+        flow = model%has_drift(); timed = .false.; tau = 0.0_wp
         if (present(t0)) timed = model%has_time()
         hs = h
         steps: do i = 1, max(nsteps, 1_ik)
@@ -153,12 +153,12 @@ contains
                 end if
                 ks%h = hs; ks%pc = 1
             end if
-            tau = real(ndone, wp) + sum(c(1:ks%pc - 1), mask=op(1:ks%pc - 1) == OP_DRIFT)
+            if (timed) tau = real(ndone, wp) + sum(c(1:ks%pc - 1), mask=op(1:ks%pc - 1) == OP_DRIFT)
             do k = ks%pc, nop
                 ks%pc = k
                 if (timed .and. op(k) /= OP_DRIFT) call model%set_time(t0 + tau * hs)
                 if (op(k) == OP_DRIFT) then
-                    tau = tau + c(k)
+                    if (timed) tau = tau + c(k)
                     if (flow) then
                         if (.not. drifted(c(k) * hs)) return
                     else
