@@ -226,8 +226,9 @@ contains
         gm_has_time = self%inner%has_time()
     end function gm_has_time
 
-    !> Free flight q <- q + dt v (the kernel's own arithmetic, bitwise), then the checks of
-    !> the end point and of the chord; a refusal sets `stat` (the kernel undoes the step).
+    !> The model's own drift (free flight by default, the same arithmetic as the kernel's),
+    !> then the checks of the end point and, for free flight, of the chord; a refusal sets
+    !> `stat` (the kernel undoes the step).
     subroutine gm_drift(self, q, v, dt, stat)
         class(guarded_model_t), intent(inout) :: self
         real(wp), intent(inout), contiguous :: q(:, :)
@@ -235,21 +236,10 @@ contains
         real(wp), intent(in) :: dt
         integer, intent(inout) :: stat
         real(wp) :: w2a, ra, len, rmin, k, hw
-        integer :: i, j
-        if (self%flow) then          ! the model's own flow, then its end point
-            call self%inner%drift(q, v, dt, stat)
-            if (stat /= 0) return
-            call point_check(self, q)
-            if (self%why /= FSYM_SUCCESS) stat = 1
-            return
-        end if
-        w2a = self%w2; ra = self%r
-        len = abs(dt) * velocity_spread(v)
-        do j = 1, size(q, 2)
-            do i = 1, size(q, 1)
-                q(i, j) = q(i, j) + dt * v(i, j)
-            end do
-        end do
+        w2a = self%w2; ra = self%r; len = 0.0_wp
+        if (self%chord) len = abs(dt) * velocity_spread(v)
+        call self%inner%drift(q, v, dt, stat)   ! the model's flow (default: free flight)
+        if (stat /= 0) return
         call point_check(self, q)
         if (self%why == FSYM_SUCCESS .and. self%chord .and. ra > 0.0_wp .and. &
             ra < huge(ra) .and. self%r > 0.0_wp .and. self%r < huge(ra)) then
