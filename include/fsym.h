@@ -38,7 +38,8 @@ enum {
     FSYM_ERR_CONVENTION = 22,        /* F77 caller with non-default integer size */
     FSYM_ERR_NO_MEMORY = 23,         /* an allocation failed (e.g. a huge method table) */
     FSYM_ERR_BUSY = 24,              /* integrator called from its own callback */
-    FSYM_ERR_LAST = 24               /* largest code in use */
+    FSYM_ERR_ENCOUNTER = 25,         /* close encounter: step undone, the pair named */
+    FSYM_ERR_LAST = 25               /* largest code in use */
 };
 
 /* Longest method label accepted (longer ones: FSYM_ERR_BAD_ARGUMENT, never cut). */
@@ -132,6 +133,49 @@ void fsym_destroy(fsym_integrator *handle);
 
 /* NUL-terminated text of a status code in buf (at most len bytes). */
 void fsym_status_message(int code, char *buf, int len);
+
+/* ---- The planetary drop-in (doc/legacy.md; the F77 routines FSYMPW ... FSYMPE) ----------
+ * A heliocentric legacy code's state: central mass m0, masses m[n] (massive first, then
+ * test particles of mass 0), G, heliocentric x[n][3], v[n][3]. The state of the run lives in
+ * the caller's work arrays double rw[lrw], int iw[liw] (no global state: reentrant; rw and iw
+ * are a checkpoint). lrw = 29 + 13 n + 2 nop + 3 n nslot, liw = 78 + nop (nop stages, nslot
+ * = 4, + 1 with gradient kicks, + 2 with extrapolated kicks), or ask fsym_planets_work_size. */
+
+/* Extra accelerations a[n][3] at the heliocentric positions x[n][3] (a J2, a post-Newtonian
+ * term, a disk); return non-zero to report a failure (the step is undone, FSYM_ERR_MODEL). */
+typedef int (*fsym_planets_force_fn)(int n, const double *x, double *a, void *user);
+
+enum { FSYM_PLANETS_JACOBI = 1, FSYM_PLANETS_DEMOCRATIC = 2 };
+
+/* Work sizes of the method label for n bodies besides the centre. */
+int fsym_planets_work_size(const char *method, int n, int *lrw, int *liw);
+
+/* Set up rw, iw: method label, coordinates (FSYM_PLANETS_JACOBI or _DEMOCRATIC), masses, G,
+ * close-encounter radius hill in mutual Hill radii (0: off). On error nothing is written. */
+int fsym_planets_init(const char *method, int coords, int n, double m0, const double *m,
+                      double g, double hill, double *rw, int lrw, int *iw, int liw);
+
+/* nstep steps of size h of the heliocentric x, v. m0, m, G must be bitwise those of the
+ * set-up (FSYM_ERR_CHECKPOINT otherwise). force may be NULL; fraction > 0 turns the step-size
+ * guard on. FSYM_ERR_ENCOUNTER: a close encounter, the pair in iw[8], iw[9]. On failure x, v
+ * hold the state after the iw[6] steps completed (unchanged when none was). */
+int fsym_planets_step(int n, double m0, const double *m, double g, double *x, double *v,
+                      double h, int nstep, fsym_planets_force_fn force, void *user,
+                      double fraction, double *rw, int lrw, int *iw, int liw);
+
+/* The heliocentric state kept in rw (the x, v the last step call returned): after restoring
+ * rw and iw from a checkpoint, the state to go on from, bitwise. */
+int fsym_planets_state(int n, double *x, double *v, const double *rw, int lrw, const int *iw,
+                       int liw);
+
+/* The message of the status the last call on rw, iw returned (the pair of an encounter, the
+ * body whose mass differs, the steps completed), NUL-terminated in buf. */
+int fsym_planets_message(int status, const double *rw, int lrw, const int *iw, int liw,
+                         char *buf, int len);
+
+/* Total energy (barycentric kinetic + potential) of a heliocentric state. */
+int fsym_planets_energy(int n, double m0, const double *m, double g, const double *x,
+                        const double *v, double *e);
 
 #ifdef __cplusplus
 }

@@ -35,6 +35,8 @@ module fsym_force
             !! largest local frequency squared, for the step-size guard (optional)
         procedure :: has_frequency => force_has_no_frequency
             !! whether `local_frequency` is provided
+        procedure :: failure => force_failure
+            !! the library status and text of the model's last failure (default: unchanged)
     end type force_model_t
 
     !> Interface of `force_model_t%acceleration`.
@@ -173,5 +175,16 @@ contains
         force_has_no_frequency = .false.
         associate (unused => self); end associate   ! the interface's arguments
     end function force_has_no_frequency
+
+    !> Default `failure`: nothing to add. Called by the faces right after a step failed with
+    !> FSYM_ERR_MODEL (a non-zero `stat` from this model), so that a model whose failures
+    !> have a meaning of their own can say which: it may replace `code` by a library status
+    !> (a planetary model's close encounter: FSYM_ERR_ENCOUNTER) and put its text into `msg`.
+    subroutine force_failure(self, code, msg)
+        class(force_model_t), intent(in) :: self     !! the model
+        integer, intent(inout) :: code               !! FSYM_ERR_MODEL on entry
+        character(len=*), intent(inout) :: msg       !! blank on entry; the model's text
+        associate (unused_self => self, unused_code => code, unused_msg => msg); end associate
+    end subroutine force_failure
 
 end module fsym_force

@@ -36,6 +36,7 @@ module fsym_integrator
         logical :: comp = .false.           ! compensated updates
         logical :: can_undo = .false.       ! the last call was one completed `step`
         type(ckpt_clock_t) :: clock0        ! the clock before it
+        character(len=160) :: model_msg = ''  ! the model's text of the last failed step
     contains
         procedure :: init => integrator_init
             !! set up for a scheme, a model and arrays (d, n)
@@ -355,6 +356,10 @@ contains
         end if
         call fsym_kernel_counts(self%ks, nf, ng)
         call self%account(nf, ng, h, ndone)
+        if (st == FSYM_ERR_MODEL) then      ! the model may say more (a close encounter)
+            self%model_msg = ''
+            call model%failure(st, self%model_msg)
+        end if
     end subroutine advance
 
     !> Report the status `st` of `advance`: a refusal (not initialised, arrays of the wrong
@@ -484,6 +489,11 @@ contains
                 call fsym_text_put(buf, p, ' (')
                 call fsym_text_put(buf, p, fsym_op_name(k))
                 call fsym_text_put(buf, p, '); state restored')
+                if ((st == FSYM_ERR_MODEL .or. st == FSYM_ERR_ENCOUNTER) .and. &
+                    len_trim(self%model_msg) > 0) then
+                    call fsym_text_put(buf, p, '; ')
+                    call fsym_text_put(buf, p, self%model_msg(1:len_trim(self%model_msg)))
+                end if
             end if
         else if (st == FSYM_ERR_NONFINITE_STATE) then
             call fsym_text_put(buf, p, ': refused, ')

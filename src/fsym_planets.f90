@@ -37,11 +37,12 @@
 !> or a test particle and a massive body) are closer than `hill` mutual Hill radii
 !> ((m_i + m_j)/(3 m0))^(1/3) (|Q_i| + |Q_j|)/2: it returns PLANETS_ENCOUNTER, the kernel
 !> undoes the step (state as it was), and `encounter_i`, `encounter_j` and `message` name
-!> the pair, so the host can hand over.
+!> the pair, so the host can hand over. Every face then reports the library status
+!> FSYM_ERR_ENCOUNTER with that message (`failure`, called by the faces after a failed step).
 module fsym_planets
     use fsym_kinds, only: wp, ik
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_ARGUMENT, FSYM_ERR_SHAPE, fsym_report, &
-                           fsym_int_text
+                           fsym_int_text, FSYM_ERR_ENCOUNTER
     use fsym_force, only: force_model_t
     use fsym_kepler_universal, only: fsym_kepler_drift_many
     implicit none
@@ -73,6 +74,9 @@ module fsym_planets
         integer :: encounter_i = 0           !! pair of the last encounter (0 0: none)
         integer :: encounter_j = 0           !! second body of that pair
         integer :: kepler_body = 0           !! body of the last failed Kepler solve
+        !> why the last call of `acceleration` or `drift` failed (PLANETS_ENCOUNTER,
+        !> PLANETS_KEPLER_FAILED; 0: it did not, or the `extra` model failed)
+        integer :: failed = 0
         character(len=160) :: message = ''   !! text of the last encounter or failure
         integer(ik) :: ndrift = 0            !! Kepler drifts taken (calls of `drift`)
         real(wp), allocatable, private :: x(:, :), ax(:, :), dx(:, :), dax(:, :)  ! (3, 0:n)
@@ -88,6 +92,7 @@ module fsym_planets
         procedure :: energy => planets_energy             !! total energy of a state
         procedure :: to_state => planets_to_state         !! barycentric -> state arrays
         procedure :: from_state => planets_from_state     !! state arrays -> barycentric
+        procedure :: failure => planets_failure           !! encounter -> FSYM_ERR_ENCOUNTER
     end type planets_model_t
 
     public :: planets_helio_to_bary, planets_bary_to_helio
@@ -314,6 +319,7 @@ contains
         integer, intent(inout) :: stat                  !! 0 on entry; non-zero = failure
         integer :: st, ifail
         self%ndrift = self%ndrift + 1
+        self%failed = 0
         if (self%coords == PLANETS_DEMOCRATIC) call jump(0.5_wp * dt)
         call fsym_kepler_drift_many(self%n, self%gmk, q, v, dt, st, ifail)
         if (st /= FSYM_SUCCESS) then
@@ -321,6 +327,7 @@ contains
             self%message = 'planets: the Kepler solve of body '//fsym_int_text(ifail)// &
                            ' failed (state not finite, or no convergence)'
             stat = PLANETS_KEPLER_FAILED
+            self%failed = stat
             return
         end if
         if (self%coords == PLANETS_DEMOCRATIC) call jump(0.5_wp * dt)
@@ -362,6 +369,7 @@ contains
         integer, intent(inout) :: stat                  !! 0 on entry; non-zero = failure
         real(wp) :: z(3)
         integer :: i0, k
+        self%failed = 0
         z = 0.0_wp
         if (self%coords == PLANETS_JACOBI) then
             call planets_jacobi_to_bary(self%n, self%m, self%eta, q, z, self%x)
@@ -495,6 +503,17 @@ contains
         end do
     end subroutine pair_derivative
 
+    !> After a step failed with FSYM_ERR_MODEL: a close encounter found by the last kick is
+    !> the library status FSYM_ERR_ENCOUNTER, and the message names the pair (or, after a
+    !> failed Kepler solve, the body); a failure of the `extra` model is left as it is.
+    subroutine planets_failure(self, code, msg)
+        class(planets_model_t), intent(in) :: self   !! the model
+        integer, intent(inout) :: code               !! FSYM_ERR_MODEL on entry
+        character(len=*), intent(inout) :: msg       !! the model's text
+        if (self%failed == PLANETS_ENCOUNTER) code = FSYM_ERR_ENCOUNTER
+        if (self%failed /= 0) msg = self%message
+    end subroutine planets_failure
+
     !> Fail with PLANETS_ENCOUNTER when a massive pair, or a test particle and a massive body,
     !> are within `hill` mutual Hill radii (inertial positions in self%x).
     subroutine check_encounters(self, stat)
@@ -516,6 +535,7 @@ contains
                     self%message = 'planets: close encounter of bodies '//fsym_int_text(i)// &
                                    ' and '//fsym_int_text(j)//' (within the Hill limit)'
                     stat = PLANETS_ENCOUNTER
+                    self%failed = stat
                     return
                 end if
             end do

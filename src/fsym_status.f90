@@ -65,7 +65,10 @@ module fsym_status
     integer, parameter, public :: FSYM_ERR_BUSY = 24
         !! The object is in use: called again from inside its own call (a force model that
         !! steps the integrator that called it), or its work array was written meanwhile.
-    integer, parameter, public :: FSYM_ERR_LAST = 24
+    integer, parameter, public :: FSYM_ERR_ENCOUNTER = 25
+        !! Two bodies came within the encounter radius: the step was undone (the state as it
+        !! was) and the message names the pair, for the host to hand over (planetary models).
+    integer, parameter, public :: FSYM_ERR_LAST = 25
         !! Largest status code in use.
     integer, parameter, public :: FSYM_STATUS_MSG_LEN = 48
         !! Longest text of `fsym_status_message` (a buffer of this length always holds it).
@@ -101,6 +104,7 @@ module fsym_status
          'caller integers are not 4-byte integers', &
          'out of memory', &
          'object busy: called from its own callback', &
+         'close encounter: hand the pair over', &
          'unknown status code']
 
     !> Decimal text of an integer (default kind or `ik`), for messages and labels; its length
