@@ -281,6 +281,10 @@ contains
             info = FSYM_ERR_BAD_ARGUMENT
         else if (fsym_overlap(x, v)) then
             info = FSYM_ERR_BAD_ARGUMENT; iw(9) = -1
+        else if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
+            info = FSYM_ERR_BAD_STEP
+        else if (.not. (all(abs(x) <= huge(x)) .and. all(abs(v) <= huge(v)))) then
+            info = FSYM_ERR_NONFINITE_STATE      ! refused before the image takes it over
         end if
         if (info /= FSYM_SUCCESS) then
             call finish(); return
