@@ -56,6 +56,7 @@ C     work sizes (LRW = 29 + 13 N + 2 NOP + 3 N NSLOT), then set up
       CALL FSYMPE(N, M0, M, G, X, V, E0)
       WRITE (*, '(A,A,A,I2,A,F6.1,A)') 'method ', METHOD(1:6),
      &    ', ', N, ' planets, h = ', H, ' d (Jacobi coordinates)'
+      WRITE (*, '(A,I5,A,I4)') 'work arrays: LRW =', LRW, ', LIW =', LIW
       WRITE (*, '(A)') '   years   max|dE/E| (at the outputs so far)'
 C
 C     the run, with output every NSTEP steps and a checkpoint half way
