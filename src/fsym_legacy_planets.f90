@@ -98,12 +98,14 @@ module fsym_legacy_planets
 contains
 
     !> The one place where a method label becomes a stage table for the planetary drop-in
-    !> (its F77 and C routines all come here).
-    !> HOOK for processed methods: the symplectic correctors (module `fsym_processed`,
-    !> `fsym_processed_lookup(label, ...)`) are to be looked up here first; a processed
-    !> method's corrector is then applied where `pl_steps` hands the state back (`give_back`)
-    !> and undone where it takes a new one (`take_new`), the kernel's state staying the
-    !> uncorrected one in Q, VS.
+    !> (its F77 and C routines all come here, through `pl_sizes` and `pl_setup`).
+    !> HOOK for processed methods (branch `corr`, module `fsym_processed`): replace the call
+    !> below by `call fsym_processed_lookup(label, s, order, info, msg)`; for order > 0 keep
+    !> the order in IW and apply the corrector (`fsym_corrector_table(order, +1 or -1, ...)`,
+    !> run by `fsym_kernel_run` with the model's Kepler drifts) where `pl_steps` takes a new
+    !> state (`take_new`: the in-map into Q, VS) and where it hands one back (`give_back`:
+    !> the out-map on a copy, so that Q, VS stay the mapped state and output never changes
+    !> the continuing trajectory); the work sizes then grow by the corrector's stages.
     subroutine resolve_method(label, s, info, msg)
         character(len=*), intent(in) :: label
         type(scheme_t), intent(inout) :: s
