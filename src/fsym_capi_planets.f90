@@ -103,8 +103,8 @@ contains
         type(c_ptr), value :: m               !! const double m[n]
         type(c_ptr), value :: rw, iw          !! work arrays
         integer(c_int), value :: lrw, liw     !! their lengths
-        real(wp), pointer :: mf(:), rf(:)
-        integer(c_int), pointer :: jf(:)
+        real(wp), pointer, contiguous :: mf(:), rf(:)
+        integer(c_int), pointer, contiguous :: jf(:)
         character(len=PL_LABEL_MAX) :: name
         character(len=PL_MSG_LEN) :: msg
         integer :: nlen, st
@@ -134,8 +134,8 @@ contains
         type(c_ptr), value :: user            !! passed to force
         type(c_ptr), value :: rw, iw          !! work arrays
         integer(c_int), value :: lrw, liw     !! their lengths
-        real(wp), pointer :: mf(:), rf(:), xf(:, :), vf(:, :)
-        integer(c_int), pointer :: jf(:)
+        real(wp), pointer, contiguous :: mf(:), rf(:), xf(:, :), vf(:, :)
+        integer(c_int), pointer, contiguous :: jf(:)
         type(c_pl_force_t) :: extra
         character(len=PL_MSG_LEN) :: msg
         integer :: st
@@ -165,8 +165,8 @@ contains
         type(c_ptr), value :: x, v            !! receive the state
         type(c_ptr), value :: rw, iw          !! work arrays
         integer(c_int), value :: lrw, liw     !! their lengths
-        real(wp), pointer :: rf(:), xf(:, :), vf(:, :)
-        integer(c_int), pointer :: jf(:)
+        real(wp), pointer, contiguous :: rf(:), xf(:, :), vf(:, :)
+        integer(c_int), pointer, contiguous :: jf(:)
         integer :: st
         stat = FSYM_ERR_BAD_ARGUMENT
         if (.not. (c_associated(rw) .and. c_associated(iw) .and. c_associated(x) .and. &
@@ -188,8 +188,8 @@ contains
         integer(c_int), value :: lrw, liw     !! their lengths
         type(c_ptr), value :: buf             !! receives the text
         integer(c_int), value :: buflen       !! size of buf in bytes
-        real(wp), pointer :: rf(:)
-        integer(c_int), pointer :: jf(:)
+        real(wp), pointer, contiguous :: rf(:)
+        integer(c_int), pointer, contiguous :: jf(:)
         character(kind=c_char), pointer :: b(:)
         character(len=PL_MSG_LEN) :: msg
         integer :: k, mlen
@@ -216,7 +216,8 @@ contains
         real(c_double), value :: m0, g        !! central mass, G
         type(c_ptr), value :: m, x, v         !! masses, heliocentric state
         type(c_ptr), value :: e               !! double *: the energy
-        real(wp), pointer :: mf(:), xf(:, :), vf(:, :), ef
+        real(wp), pointer, contiguous :: mf(:), xf(:, :), vf(:, :)
+        real(wp), pointer :: ef
         stat = FSYM_ERR_BAD_ARGUMENT
         if (.not. (c_associated(m) .and. c_associated(x) .and. c_associated(v) .and. &
                    c_associated(e)) .or. n < 1) return
