@@ -22,11 +22,14 @@ program fsym_itp_bench
     use fsym_itp, only: fsym_itp_t
     use fsym_itp_problems, only: fsym_itp_problem
     implicit none
-    integer, parameter :: nmeth = 7, maxpts = 14
+    integer, parameter :: nmeth = 13, maxpts = 40, ntol = 3
+    real(wp), parameter :: tols(ntol) = [1.0e-8_wp, 1.0e-10_wp, 1.0e-12_wp]
     character(len=8), parameter :: meths(nmeth) = [character(len=8) :: 'CN', 'Strang', 'A', &
-                                                    'C', 'A4', 'A5', 'A6']
+                                                    'C', 'A4', 'A5', 'A6', 'MP4', 'MP6', &
+                                                    'MP8', 'A-MP6', 'TVT', 'B']
     character(len=8), parameter :: probs(3) = [character(len=8) :: 'ho3d', 'pt1d', 'gp3d']
     logical :: quick, want(3)
+    real(wp) :: tol_stop = 1.0e-12_wp
     integer :: i, nargs
     character(len=64) :: arg
 
@@ -164,8 +167,11 @@ contains
 
     subroutine problem(name)
         character(len=*), intent(in) :: name
-        real(wp) :: taus(maxpts), errs(maxpts), tpp(nmeth), spread(nmeth), tau, order, f
-        real(wp) :: lt, x(maxpts), y(maxpts), steps
+        real(wp) :: taus(maxpts), errs(maxpts), tpp(nmeth), spread(nmeth), tau, order
+        real(wp) :: x(maxpts), y(maxpts), steps, res_fft(ntol, nmeth), res_sec(ntol, nmeth)
+        real(wp) :: res_steps(nmeth)
+        logical :: base(nmeth), fwd(nmeth), res_x(ntol, nmeth)
+        integer :: it, ib
         integer(ik) :: nffts(maxpts), budget
         integer :: m, k, np, i, nfit, fps
         logical :: ok, extrap
@@ -180,28 +186,39 @@ contains
         budget = 20000_ik   ! FFTs of one run
         if (size(n) == 1) budget = 1000000_ik
         if (.not. quick) budget = 20 * budget
+        if (quick) tol_stop = 1.0e-10_wp
         do m = 1, nmeth
-            tau = 1.6_wp
+            tau = 3.2_wp
             if (meths(m) == 'Strang') tau = 0.4_wp
             if (meths(m) == 'CN') tau = 0.05_wp
             np = 0
             extrap = .false.
             do k = 1, maxpts
                 call one_run(name, trim(meths(m)), tau, errs(k), nffts(k), ok)
+                if (.not. ok .and. np == 0) then   ! too large a first step: go on smaller
+                    tau = tau / sqrt(2.0_wp)
+                    cycle
+                end if
                 if (.not. ok) exit
-                np = k
-                taus(k) = tau
+                np = np + 1
+                errs(np) = errs(k)
+                nffts(np) = nffts(k)
+                taus(np) = tau
                 write (output_unit, '(5a,es10.3,a,es10.3,a,i0)') '# sweep problem=', name, &
-                    ' method=', trim(meths(m)), ' tau=', tau, ' rel_err=', errs(k), &
-                    ' ffts=', nffts(k)
-                if (errs(k) < 1.0e-13_wp) exit
-                if (errs(k) < 1.0e-8_wp .and. count(errs(1:k) < 1.0e-2_wp) >= 3) exit
-                if (2 * nffts(k) > budget) then   ! the next point would exceed the budget
+                    ' method=', trim(meths(m)), ' tau=', tau, ' rel_err=', errs(np), &
+                    ' ffts=', nffts(np)
+                if (errs(np) < 1.0e-13_wp) exit
+                if (errs(np) < tol_stop .and. count(errs(1:np) < 1.0e-2_wp) >= 3) exit
+                if (sqrt(2.0_wp) * nffts(np) > budget) then   ! the next point would exceed it
                     extrap = .true.
                     exit
                 end if
-                tau = tau / 2
+                tau = tau / sqrt(2.0_wp)
             end do
+            res_fft(:, m) = huge(1.0_wp)
+            res_sec(:, m) = huge(1.0_wp)
+            res_steps(m) = 1.0_wp
+            res_x(:, m) = .true.
             if (np == 0) cycle
             ! fitted order: points with 1e-13 < err < 1e-2
             nfit = 0
@@ -219,19 +236,7 @@ contains
             call probe%init(n, box, v, trim(meths(m)), 0.1_wp, st, dv=dv, g=g)
             fps = probe%fft_per_step
             call probe%destroy()
-            ! tau at 1e-8: log-log interpolation between the bracketing points
-            k = findloc(errs(1:np) < 1.0e-8_wp, .true., dim=1)
-            if (k >= 2) then
-                f = (log(1.0e-8_wp) - log(errs(k - 1))) / (log(errs(k)) - log(errs(k - 1)))
-                lt = log(taus(k - 1)) + f * (log(taus(k)) - log(taus(k - 1)))
-            else if (np == 1 .and. errs(1) < 1.0e-8_wp) then
-                lt = log(taus(1)) + (log(1.0e-8_wp) - log(errs(1))) / max(order, 1.0_wp)
-                extrap = .true.
-            else
-                lt = log(taus(np)) + (log(1.0e-8_wp) - log(errs(np))) / max(order, 0.5_wp)
-                extrap = .true.
-            end if
-            steps = tend / exp(lt)
+            steps = steps_at(1.0e-8_wp, taus(1:np), errs(1:np), order, tend, extrap)
             if (extrap) write (output_unit, '(5a)') '# problem=', name, ' method=', &
                 trim(meths(m)), ': value at 1e-8 extrapolated with the fitted order'
             write (output_unit, '(5a,es9.2,a,i0)') '# timing problem=', name, ' method=', &
@@ -239,8 +244,76 @@ contains
             write (output_unit, '(5a,f0.2,a,i0,a,es10.3)') 'itp problem=', name, ' method=', &
                 trim(meths(m)), ' order=', order, ' ffts_to_1e-8=', nint(steps * fps, int64), &
                 ' seconds_to_1e-8=', steps * tpp(m)
+            res_fft(1, m) = steps * fps
+            res_sec(1, m) = steps * tpp(m)
+            res_steps(m) = steps
+            res_x(1, m) = extrap
+            do it = 2, ntol   ! tighter tolerances, # lines
+                steps = steps_at(tols(it), taus(1:np), errs(1:np), order, tend, extrap)
+                res_fft(it, m) = steps * fps
+                res_sec(it, m) = steps * tpp(m)
+                res_x(it, m) = extrap
+                write (output_unit, '(5a,es8.1,a,i0,a,es10.3,a,l1)') '# tol problem=', name, &
+                    ' method=', trim(meths(m)), ' tol=', tols(it), ' ffts=', &
+                    nint(steps * fps, int64), ' seconds=', steps * tpp(m), ' extrapolated=', &
+                    extrap
+            end do
             flush (output_unit)
         end do
+        ! the baselines: the cheaper Strang form (V/2 T V/2 or T/2 V T/2), and CN; the best
+        ! forward method (order >= 4) by FFTs and by time, at each tolerance
+        base = [(any(meths(m) == ['Strang', 'TVT   ']), m = 1, nmeth)]
+        fwd = [(.not. (base(m) .or. meths(m) == 'CN'), m = 1, nmeth)]
+        do it = 1, ntol
+            i = minloc(res_fft(it, :), mask=fwd, dim=1)
+            k = minloc(res_sec(it, :), mask=fwd, dim=1)
+            ib = minloc(res_fft(it, :), mask=base, dim=1)
+            write (output_unit, '(3a,es8.1,a,i0,5a,i0,a,f0.1,a,f0.1,3a,f0.1,a,f0.1,a,l1,a,l1)') &
+                '# summary problem=', name, ' tol=', tols(it), ' strang_ffts=', &
+                nint(res_fft(it, ib), int64), ' (', trim(meths(ib)), ') best_forward_ffts=', &
+                trim(meths(i)), ':', nint(res_fft(it, i), int64), ' ratio_strang=', &
+                res_fft(it, ib) / res_fft(it, i), ' ratio_cn=', res_fft(it, 1) / res_fft(it, i), &
+                ' best_forward_time=', trim(meths(k)), ' time_ratio_strang=', &
+                minval(res_sec(it, :), mask=base) / res_sec(it, k), ' time_ratio_cn=', &
+                res_sec(it, 1) / res_sec(it, k), ' extrapolated=', &
+                res_x(it, i) .or. res_x(it, ib) .or. res_x(it, k), ' cn_extrapolated=', &
+                res_x(it, 1)
+        end do
+        ! check of the interpolation at 1e-8: the best forward method and the cheaper Strang
+        ! run with the next whole number of steps above the interpolated one
+        i = minloc(res_fft(1, :), mask=fwd, dim=1)
+        ib = minloc(res_fft(1, :), mask=base, dim=1)
+        do m = 1, nmeth
+            if (m /= i .and. m /= ib) cycle
+            k = ceiling(res_steps(m) - 1.0e-9_wp)
+            call one_run(name, trim(meths(m)), tend / k, errs(1), nffts(1), ok)
+            if (ok) write (output_unit, '(5a,i0,a,es10.3,a,es10.3,a,i0)') '# check problem=', &
+                name, ' method=', trim(meths(m)), ' steps=', k, ' tau=', tend / k, &
+                ' rel_err=', errs(1), ' ffts=', nffts(1)
+        end do
     end subroutine problem
+
+    !> Steps (of t = tend) at which the error reaches tol: log-log interpolation between the
+    !> sweep points around it, else extrapolation with the fitted order (`extrap` true).
+    real(wp) function steps_at(tol, taus, errs, order, tend, extrap) result(steps)
+        real(wp), intent(in) :: tol, taus(:), errs(:), order, tend
+        logical, intent(out) :: extrap
+        integer :: k, np
+        real(wp) :: f, lt
+        np = size(taus)
+        extrap = .false.
+        k = findloc(errs < tol, .true., dim=1)
+        if (k >= 2) then
+            f = (log(tol) - log(errs(k - 1))) / (log(errs(k)) - log(errs(k - 1)))
+            lt = log(taus(k - 1)) + f * (log(taus(k)) - log(taus(k - 1)))
+        else if (k == 1) then
+            lt = log(taus(1)) + (log(tol) - log(errs(1))) / max(order, 1.0_wp)
+            extrap = .true.
+        else
+            lt = log(taus(np)) + (log(tol) - log(errs(np))) / max(order, 0.5_wp)
+            extrap = .true.
+        end if
+        steps = tend / exp(lt)
+    end function steps_at
 
 end program fsym_itp_bench
