@@ -4,7 +4,12 @@
 !> the map from a table to grid factors and its derivation).
 !>
 !> `init` sets up the grid, the FFT plans, the method's stage factors for the step tau and
-!> every work array; `step` and `run` never allocate and do no I/O. After every step each
+!> every work array; `step` and `run` never allocate and do no I/O. A method whose stages
+!> start and end with drifts keeps the states as spectra between steps (`fsal`): the last
+!> drift of a step and the first of the next then cost two FFTs together, normalisation and
+!> Gram-Schmidt go by Parseval, and the states at the grid points are made on demand (one
+!> backward FFT per state, counted). A multi-product method runs each branch from the state
+!> at the step's start and sums them with their weights. After every step each
 !> state is orthogonalised against the lower ones (Gram-Schmidt) and normalised to one; the
 !> norm it had is the norm-decay estimate exp(-tau E) of its energy (`e_norm`); `energy`
 !> gives <H> (for Gross-Pitaevskii the energy functional; `e_norm` is then the chemical

@@ -33,6 +33,18 @@
 !> which |grad V|^2 is as cheap. So A' saves nothing here and is refused with a status
 !> (use A: its gradient term costs no FFT for a fixed V).
 !>
+!> **Merged stages.** Consecutive stages of the same kind are merged when a table becomes
+!> grid stages (two kinetic factors commute and multiply; two potential factors add their
+!> weights), so a table written as a repeated step pays one drift's two FFTs per merged run.
+!> The propagator (`fsym_itp`) also merges the last drift of a step with the first of the
+!> next when a table starts and ends with drifts (`TVT`, `B`, `C`), by holding the spectra
+!> of the states between steps: 2 (n_drift - 1) FFTs a step.
+!>
+!> **Multi-product expansions** (`MPq`, `BASE-MPq`): sum_i w_i S(tau/i)^i of a symmetric
+!> forward base S (Strang by default, or A, B, ...), every sub-step forward; the weights
+!> alternate in sign (`fsym_itp_mp_weights`). The branches are concatenated in one stage
+!> list, each branch's stages with weights c/i (and u/i^3), and run from the same state.
+!>
 !> Two methods are not tables: `Strang` is the table V/2 T V/2 (built with
 !> `fsym_scheme_custom`: one drift, two FFTs per step), and `CN` is the first-order split-step
 !> Crank-Nicolson of the published Gross-Pitaevskii codes, psi <- C(tau) exp(-tau V) psi with

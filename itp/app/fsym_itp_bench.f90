@@ -5,16 +5,25 @@
 !>   gp3d  3-D anisotropic Gross-Pitaevskii ground state, trap (1, 1.5, 2), g = 20, 36^3
 !>         points, box 10, against A5 at tau = 0.005 on the same grid (converged in tau; its
 !>         resolution is checked and printed).
+!> Methods: CN (split-step Crank-Nicolson), the two Strang forms V/2 T V/2 (`Strang`) and
+!> T/2 V T/2 (`TVT`, drifts merged across steps), Chin's forward A, B, C and A4-A6, and the
+!> multi-product expansions MP4, MP6, MP8 (of Strang) and A-MP6 (of A).
 !> Every run starts from the same Gaussian and runs t = 16, long
 !> enough that the excited components are below 1e-12; the relative error of <H> is then the
-!> method's. Per method a sweep of tau (halving from tau0) until the error is below 1e-8; the
-!> FFTs and seconds to 1e-8 are interpolated log-log between the two sweep points around 1e-8
-!> (`--quick` stops a sweep whose next point would exceed 20000 FFTs in 3-D; the value is then
-!> extrapolated with the fitted order and a `#` line says so). Seconds per step come from a
-!> separate timing pass: blocks of steps of every method interleaved, `reps` repetitions, the
-!> minimum taken, the spread printed. Output, per problem and method:
+!> method's. Per method a sweep of tau (dividing by sqrt 2 from tau0 = 3.2, 0.4 for Strang,
+!> 0.05 for CN; a first step that fails is skipped) until the error is below 1e-12
+!> (`--quick`: 1e-10). FFTs and seconds to 1e-8 (and, on # lines, to 1e-10 and 1e-12) are
+!> interpolated log-log between the two sweep points around the tolerance (`--quick` stops a
+!> sweep whose next point would exceed 20000 FFTs in 3-D, the full run 400000; a value
+!> beyond the sweep is extrapolated with the fitted order and flagged). The FFTs are exact
+!> counts (`fft_per_step` times the interpolated number of steps). Seconds per step come from
+!> a separate timing pass: blocks of steps of every method interleaved, 7 repetitions, the
+!> minimum taken, the spread printed. Per problem and tolerance a `# summary` line compares
+!> the best forward method with the cheaper Strang form and with CN, and `# check` lines run
+!> the winner and the Strang baseline at 1e-8 with the next whole number of steps (the
+!> interpolation's check). Output, per problem and method:
 !>   itp problem=NAME method=M order=P ffts_to_1e-8=N seconds_to_1e-8=S
-!> and `#` lines with the sweep (tau, error, FFTs) and the timing spread.
+!> and `#` lines with the sweep (tau, error, FFTs), the timing spread, the tolerances.
 !> Usage: fsym_itp_bench [--quick] [problem ...]
 program fsym_itp_bench
     use, intrinsic :: iso_fortran_env, only: int64, output_unit
@@ -51,6 +60,7 @@ program fsym_itp_bench
     do i = 1, 3
         if (want(i)) call problem(trim(probs(i)))
     end do
+    if (want(3)) call gp_convergence()
 
 contains
 
@@ -124,6 +134,35 @@ contains
         end if
         e = cached
     end function reference_gp
+
+    !> The Gross-Pitaevskii iteration at large steps: relative <H> error of gp3d after t = 8,
+    !> 16, 32, 64 for A and MP6 at tau = 1.6, 0.8, 0.4 (the density is held over each step, an
+    !> explicit iteration in the density: converged, slow or oscillating?).
+    subroutine gp_convergence()
+        type(fsym_itp_t) :: p
+        integer, allocatable :: n(:)
+        real(wp), allocatable :: box(:), v(:), dv(:, :), psi0(:)
+        real(wp) :: g, exact, tend, e(4), taus(3)
+        character(len=8), parameter :: mm(2) = [character(len=8) :: 'A', 'MP6']
+        integer :: st, j, k, i
+        taus = [1.6_wp, 0.8_wp, 0.4_wp]
+        call setup('gp3d', n, box, v, dv, psi0, g, exact, tend)
+        exact = reference_gp()
+        do k = 1, 2
+            do i = 1, 3
+                call p%init(n, box, v, trim(mm(k)), taus(i), st, dv=dv, g=g)
+                if (st /= 0) cycle
+                call p%set_state(1, psi0)
+                do j = 1, 4
+                    call p%run(nint(8.0_wp * 2**max(j - 2, 0) / taus(i)), st, check=.false.)
+                    e(j) = abs(p%energy(1) - exact) / abs(exact)
+                end do
+                write (output_unit, '(3a,f4.2,a,4es10.2)') '# gpconv problem=gp3d method=', &
+                    trim(mm(k)), ' tau=', taus(i), ' rel_err_at_t=8,16,32,64:', e
+                call p%destroy()
+            end do
+        end do
+    end subroutine gp_convergence
 
     !> Seconds per step of each method (min over interleaved repetitions) and the spread.
     subroutine timing(name, tpp, spread)
