@@ -4,7 +4,12 @@
 !> the map from a table to grid factors and its derivation).
 !>
 !> `init` sets up the grid, the FFT plans, the method's stage factors for the step tau and
-!> every work array; `step` and `run` never allocate and do no I/O. After every step each
+!> every work array; `step` and `run` never allocate and do no I/O. A method whose stages
+!> start and end with drifts keeps the states as spectra between steps (`fsal`): the last
+!> drift of a step and the first of the next then cost two FFTs together, normalisation and
+!> Gram-Schmidt go by Parseval, and the states at the grid points are made on demand (one
+!> backward FFT per state, counted). A multi-product method runs each branch from the state
+!> at the step's start and sums them with their weights. After every step each
 !> state is orthogonalised against the lower ones (Gram-Schmidt) and normalised to one; the
 !> norm it had is the norm-decay estimate exp(-tau E) of its energy (`e_norm`); `energy`
 !> gives <H> (for Gross-Pitaevskii the energy functional; `e_norm` is then the chemical
@@ -45,6 +50,9 @@ module fsym_itp
         integer :: fft_per_step = 0                         !! FFTs of one step of one state
         real(wp), allocatable :: e_norm(:)                  !! norm-decay energies, last step
         type(fsym_itp_stage_t), allocatable :: stage(:)     !! the method's grid stages
+        integer, allocatable :: bfirst(:)                   !! first stage of each branch
+                                                            !! (multi-product), then nst+1
+        real(wp), allocatable :: bweight(:)                 !! weight of each branch
         real(wp), allocatable :: v(:)                       !! potential V(npts)
         real(wp), allocatable :: dv(:, :)                   !! grad V (npts, d)
         real(wp), allocatable :: gsq(:)                     !! |grad V|^2
@@ -55,6 +63,12 @@ module fsym_itp
         real(wp), pointer, contiguous :: work(:, :) => null()  !! backup states and scratch
         type(c_ptr) :: psi_mem = c_null_ptr                 !! FFTW handle of psi
         type(c_ptr) :: work_mem = c_null_ptr                !! FFTW handle of work
+        logical :: fsal = .false.                           !! first and last stages are
+                                                            !! drifts: merged across steps
+        logical :: stale = .false.                          !! psi behind psik (fsal only)
+        complex(wp), allocatable :: psik(:, :)              !! spectra psik(nk, nstates) of
+                                                            !! the states (fsal only)
+        complex(wp), allocatable :: psik_bak(:, :)          !! their backup during a step
         logical :: ready = .false.                          !! init succeeded
         logical :: has_state = .false.                      !! every state was set
     contains
@@ -142,8 +156,13 @@ contains
             call fsym_itp_stages_from_scheme(scheme, self%stage, st, msg)
             self%order = scheme%order
             self%method = scheme%name
+            if (st == FSYM_SUCCESS) then
+                self%bfirst = [1, size(self%stage) + 1]
+                self%bweight = [1.0_wp]
+            end if
         else
-            call fsym_itp_method(method, self%stage, self%order, self%method, st, msg)
+            call fsym_itp_method(method, self%stage, self%order, self%method, st, msg, &
+                                 self%bfirst, self%bweight)
         end if
         if (st /= FSYM_SUCCESS) then
             call fsym_pass(st, msg, stat, errmsg); return
@@ -172,19 +191,36 @@ contains
             self%gsq(:) = self%gsq + self%dv(:, j)**2
         end do
         self%nstates = ns
-        ! work: a backup of every state, then density and its d gradient components
+        ! work: a backup of every state, density, its d gradient components, a branch
         call self%grid%alloc_fields(ns, self%psi, self%psi_mem)
-        call self%grid%alloc_fields(ns + 1 + d, self%work, self%work_mem)
+        call self%grid%alloc_fields(ns + 2 + d, self%work, self%work_mem)
         if (.not. associated(self%psi) .or. .not. associated(self%work)) then
             call fsym_report(FSYM_ERR_NO_MEMORY, 'imaginary time: states', stat, errmsg)
             return
         end if
+        ! first and last stages drifts (one branch): the last drift of a step and the first of
+        ! the next share their transforms; the states are then kept as spectra between steps
+        self%fsal = size(self%bweight) == 1 .and. nst >= 3 .and. &
+                    self%stage(1)%kind == ITP_KINETIC .and. self%stage(nst)%kind == ITP_KINETIC
+        if (self%fsal) then
+            allocate (self%psik(self%grid%nk, ns), stat=ist)
+            if (ist == 0) allocate (self%psik_bak(self%grid%nk, ns), stat=ist)
+            if (ist /= 0) then
+                call fsym_report(FSYM_ERR_NO_MEMORY, 'imaginary time: spectra', stat, errmsg)
+                return
+            end if
+            self%psik(:, :) = (0.0_wp, 0.0_wp)
+        end if
+        self%stale = .false.
         self%fft_per_step = 0
         do k = 1, nst
             if (self%stage(k)%kind /= ITP_POTENTIAL) self%fft_per_step = self%fft_per_step + 2
         end do
+        if (self%fsal) self%fft_per_step = self%fft_per_step - 2
         if (self%g /= 0.0_wp .and. any(self%stage(:)%u /= 0.0_wp)) then
             self%fft_per_step = self%fft_per_step + 1 + d
+        else if (self%g /= 0.0_wp .and. self%fsal) then
+            self%fft_per_step = self%fft_per_step + 1   ! the density needs psi
         end if
         self%e_norm(:) = 0.0_wp
         self%nsteps = 0
@@ -285,18 +321,55 @@ contains
                              'or not finite', stat, errmsg)
             return
         end if
+        if (self%fsal) call materialize(self)
         self%psi(1:self%grid%npts, s) = psi / nrm
+        if (self%fsal) then
+            call self%grid%forward(self%psi(:, s))
+            self%psik(:, s) = self%grid%ck
+        end if
         self%has_state = .true.
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine itp_set_state
 
-    !> Copy state `s` out (npts values, norm one).
+    !> Copy state `s` out (npts values, norm one; for a method whose stages start and end
+    !> with drifts, one backward FFT after a step).
     subroutine itp_get_state(self, s, psi)
-        class(fsym_itp_t), intent(in) :: self   !! the propagator
-        integer, intent(in) :: s                !! which state
-        real(wp), intent(out) :: psi(:)         !! npts values
+        class(fsym_itp_t), intent(inout) :: self   !! the propagator
+        integer, intent(in) :: s                   !! which state
+        real(wp), intent(out) :: psi(:)            !! npts values
+        call materialize(self)
         psi(:) = self%psi(1:self%grid%npts, s)
     end subroutine itp_get_state
+
+    !> The states at the grid points from their spectra (fsal), when they are behind.
+    subroutine materialize(self)
+        type(fsym_itp_t), intent(inout) :: self
+        integer :: s
+        if (.not. self%stale) return
+        do s = 1, self%nstates
+            self%grid%ck2(:) = self%psik(:, s)
+            call self%grid%backward(self%grid%ck2, self%psi(:, s))
+        end do
+        self%stale = .false.
+    end subroutine materialize
+
+    !> Spectrum of state s into grid%ck (from psik when fsal, else one forward FFT).
+    subroutine spectrum_of(self, s)
+        type(fsym_itp_t), intent(inout) :: self
+        integer, intent(in) :: s
+        if (self%fsal) then
+            self%grid%ck(:) = self%psik(:, s)
+        else
+            call self%grid%forward(self%psi(:, s))
+        end if
+    end subroutine spectrum_of
+
+    !> Inner product of two spectra (Parseval, with the grid's cell volume).
+    pure real(wp) function kdot(grid, a, b)
+        type(fsym_itp_grid_t), intent(in) :: grid
+        complex(wp), intent(in) :: a(:), b(:)
+        kdot = sum(grid%kweight * real(a * conjg(b), wp)) / grid%npts * grid%dvol
+    end function kdot
 
     !> One step tau of every state, then Gram-Schmidt and normalisation. On failure (a norm
     !> that is zero or not finite, a Gross-Pitaevskii factor out of range) the states are
@@ -305,8 +378,8 @@ contains
         class(fsym_itp_t), intent(inout) :: self            !! the propagator
         integer, intent(out), optional :: stat              !! status code
         character(len=*), intent(inout), optional :: errmsg !! message on error
-        integer :: s, k, npts, r, st
-        real(wp) :: nrm, ov, shift
+        integer :: s, npts, r, st, b, ib
+        real(wp) :: nrm, ov, shift, sb, f
         character(len=128) :: msg
         if (.not. (self%ready .and. self%has_state)) then
             call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'imaginary time: step before init '// &
@@ -314,7 +387,12 @@ contains
             return
         end if
         npts = self%grid%npts
-        self%work(1:npts, 1:self%nstates) = self%psi(1:npts, :)
+        if (self%fsal) then
+            self%psik_bak(:, :) = self%psik
+            if (self%g /= 0.0_wp) call materialize(self)   ! the density needs psi
+        else
+            self%work(1:npts, 1:self%nstates) = self%psi(1:npts, :)
+        end if
         if (self%g /= 0.0_wp) then
             call gp_factors(self, st, msg)
             if (st /= FSYM_SUCCESS) then
@@ -322,19 +400,29 @@ contains
                 return
             end if
         end if
+        ib = self%nstates + 2 + self%grid%d
+        if (self%fsal) then
+            call step_fsal(self, stat, errmsg)
+            return
+        end if
         do s = 1, self%nstates
-            shift = 0.0_wp
-            do k = 1, size(self%stage)
-                select case (self%stage(k)%kind)
-                case (ITP_POTENTIAL)
-                    self%psi(1:npts, s) = self%psi(1:npts, s) * self%pfac(:, k)
-                    shift = shift + self%shift(k)
-                case default
-                    call self%grid%forward(self%psi(:, s))
-                    self%grid%ck(:) = self%grid%ck * self%kfac(:, k)
-                    call self%grid%backward(self%grid%ck, self%psi(:, s))
-                end select
-            end do
+            if (size(self%bweight) == 1) then
+                call run_stages(self, 1, size(self%stage), self%psi(:, s), shift)
+            else
+                ! multi-product: sum of the branches, each from the state at the step's start
+                do b = 1, size(self%bweight)
+                    self%work(1:npts, ib) = self%work(1:npts, s)
+                    call run_stages(self, self%bfirst(b), self%bfirst(b + 1) - 1, &
+                                    self%work(:, ib), sb)
+                    if (b == 1) then
+                        shift = sb
+                        self%psi(1:npts, s) = self%bweight(1) * self%work(1:npts, ib)
+                    else
+                        f = self%bweight(b) * exp(sb - shift)
+                        self%psi(1:npts, s) = self%psi(1:npts, s) + f * self%work(1:npts, ib)
+                    end if
+                end do
+            end if
             do r = 1, s - 1
                 ov = dot_product(self%psi(1:npts, r), self%psi(1:npts, s)) * self%grid%dvol
                 self%psi(1:npts, s) = self%psi(1:npts, s) - ov * self%psi(1:npts, r)
@@ -352,6 +440,66 @@ contains
         self%nsteps = self%nsteps + 1
         if (present(stat)) stat = FSYM_SUCCESS
     end subroutine itp_step
+
+    !> One step when the stages start and end with drifts: each state enters as its spectrum
+    !> psik, the first drift is a product there and one backward FFT, the last drift one
+    !> forward FFT and a product; Gram-Schmidt and the norm by Parseval on the spectra.
+    subroutine step_fsal(self, stat, errmsg)
+        type(fsym_itp_t), intent(inout) :: self
+        integer, intent(out), optional :: stat
+        character(len=*), intent(inout), optional :: errmsg
+        integer :: s, r, m
+        real(wp) :: shift, ov, nrm
+        m = size(self%stage)
+        do s = 1, self%nstates
+            self%grid%ck2(:) = self%psik(:, s) * self%kfac(:, 1)
+            call self%grid%backward(self%grid%ck2, self%psi(:, s))
+            call run_stages(self, 2, m - 1, self%psi(:, s), shift)
+            call self%grid%forward(self%psi(:, s))
+            self%psik(:, s) = self%grid%ck * self%kfac(:, m)
+            do r = 1, s - 1
+                ov = kdot(self%grid, self%psik(:, r), self%psik(:, s))
+                self%psik(:, s) = self%psik(:, s) - ov * self%psik(:, r)
+            end do
+            nrm = sqrt(kdot(self%grid, self%psik(:, s), self%psik(:, s)))
+            if (.not. (nrm > 0.0_wp .and. nrm <= huge(1.0_wp))) then
+                self%psik(:, :) = self%psik_bak
+                self%stale = .true.
+                call fsym_report(FSYM_ERR_NONFINITE_STATE, 'imaginary time: a state '// &
+                                 'vanished or overflowed in a step', stat, errmsg)
+                return
+            end if
+            self%psik(:, s) = self%psik(:, s) / nrm
+            self%e_norm(s) = -(log(nrm) + shift) / self%tau
+        end do
+        self%stale = .true.
+        self%nsteps = self%nsteps + 1
+        if (present(stat)) stat = FSYM_SUCCESS
+    end subroutine step_fsal
+
+    !> Stages k1..k2 on the field f (kicks in place, drifts through the spectrum); `shift` is
+    !> the sum of the exponents taken out of the potential factors (f is exp(shift) times the
+    !> product applied).
+    subroutine run_stages(self, k1, k2, f, shift)
+        type(fsym_itp_t), intent(inout) :: self
+        integer, intent(in) :: k1, k2
+        real(wp), intent(inout) :: f(:)
+        real(wp), intent(out) :: shift
+        integer :: k, npts
+        npts = self%grid%npts
+        shift = 0.0_wp
+        do k = k1, k2
+            select case (self%stage(k)%kind)
+            case (ITP_POTENTIAL)
+                f(1:npts) = f(1:npts) * self%pfac(:, k)
+                shift = shift + self%shift(k)
+            case default
+                call self%grid%forward(f)
+                self%grid%ck(:) = self%grid%ck * self%kfac(:, k)
+                call self%grid%backward(self%grid%ck, f)
+            end select
+        end do
+    end subroutine run_stages
 
     subroutine restore(self)
         type(fsym_itp_t), intent(inout) :: self
@@ -378,7 +526,18 @@ contains
             do i = 1, npts
                 rho(i) = self%psi(i, 1)**2
             end do
-            if (any(self%stage(:)%u /= 0.0_wp)) then
+            if (any(self%stage(:)%u /= 0.0_wp) .and. self%fsal) then
+                ! grad rho = 2 psi grad psi, grad psi from the spectrum held (d FFTs)
+                self%gsq(:) = 0.0_wp
+                do j = 1, d
+                    self%grid%ck2(:) = cmplx(0.0_wp, self%grid%kvec(:, j), wp) * self%psik(:, 1)
+                    call self%grid%backward(self%grid%ck2, self%work(:, ir + j))
+                    do i = 1, npts
+                        self%gsq(i) = self%gsq(i) + (self%dv(i, j) + 2.0_wp * self%g * &
+                                                     self%psi(i, 1) * self%work(i, ir + j))**2
+                    end do
+                end do
+            else if (any(self%stage(:)%u /= 0.0_wp)) then
                 call self%grid%forward(self%work(:, ir))
                 self%gsq(:) = 0.0_wp
                 do j = 1, d
@@ -460,7 +619,8 @@ contains
         integer :: npts
         real(wp) :: ekin, nrm2
         npts = self%grid%npts
-        call self%grid%forward(self%psi(:, s))
+        call materialize(self)
+        call spectrum_of(self, s)
         ekin = 0.5_wp * sum(self%grid%kweight * self%grid%k2 * abs(self%grid%ck)**2) &
                / npts * self%grid%dvol
         nrm2 = sum(self%psi(1:npts, s)**2) * self%grid%dvol
@@ -483,7 +643,8 @@ contains
         character(len=32) :: buf
         t = 1.0e-10_wp
         if (present(tol)) t = tol
-        call self%grid%forward(self%psi(:, s))
+        call materialize(self)
+        call spectrum_of(self, s)
         frac = sum(self%grid%kweight * abs(self%grid%ck)**2, mask=self%grid%outer) / &
                sum(self%grid%kweight * abs(self%grid%ck)**2)
         if (.not. (frac <= t)) then
@@ -517,6 +678,12 @@ contains
         if (associated(self%work)) call self%grid%free_fields(self%work, self%work_mem)
         call self%grid%destroy()
         if (allocated(self%stage)) deallocate (self%stage)
+        if (allocated(self%bfirst)) deallocate (self%bfirst)
+        if (allocated(self%bweight)) deallocate (self%bweight)
+        if (allocated(self%psik)) deallocate (self%psik)
+        if (allocated(self%psik_bak)) deallocate (self%psik_bak)
+        self%fsal = .false.
+        self%stale = .false.
         if (allocated(self%v)) deallocate (self%v)
         if (allocated(self%dv)) deallocate (self%dv)
         if (allocated(self%gsq)) deallocate (self%gsq)

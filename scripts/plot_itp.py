@@ -38,17 +38,21 @@ def main():
     fig, axes = plt.subplots(1, len(probs) + 1, figsize=(4.2 * (len(probs) + 1), 3.8))
     titles = {"ho3d": "3-D oscillator (32$^3$)", "pt1d": "Pöschl–Teller $\\lambda=3$ (256)",
               "gp3d": "3-D anisotropic GP (36$^3$)"}
+    colours = plt.get_cmap("tab20").colors
     for ax, prob in zip(axes, probs):
-        for meth, pts in data[prob].items():
+        for i, (meth, pts) in enumerate(data[prob].items()):
             pts = sorted(pts, key=lambda p: p[2])
             err = np.array([p[1] for p in pts])
             nfft = np.array([p[2] for p in pts])
-            ax.loglog(nfft, np.maximum(err, 1e-16), "o-", ms=3, label=meth)
-        ax.axhline(1e-8, color="k", lw=0.5, ls=":")
+            style = "s--" if meth in ("CN", "Strang", "TVT") else "o-"
+            ax.loglog(nfft, np.maximum(err, 1e-16), style, ms=3, lw=1,
+                      color=colours[(2 * i) % 20 + (i // 10) % 2], label=meth)
+        for tol in (1e-8, 1e-10, 1e-12):
+            ax.axhline(tol, color="k", lw=0.5, ls=":")
         ax.set_xlabel("FFTs (total, t = 16)")
         ax.set_ylabel("relative error of <H>")
         ax.set_title(titles.get(prob, prob), fontsize=10)
-    axes[0].legend(fontsize=7)
+    axes[0].legend(fontsize=6, ncol=2)
     with h5py.File(gp, "r") as f:
         rho = f["fields/density/value"][()]
         x = f["grid/x1"][()]
