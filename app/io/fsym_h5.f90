@@ -356,9 +356,9 @@ contains
         integer :: ierr
         if (self%failed .or. self%id < 0) then
             call self%abort()
-            if (allocated(self%first_error)) then
-                call fsym_report(FSYM_ERR_IO, self%first_error//' (not written: '// &
-                                 self%path//')', stat, errmsg)
+            if (allocated(self%first_error)) then   ! already a full message
+                stat = FSYM_ERR_IO
+                errmsg = self%first_error//' (not written: '//self%path//')'
             else
                 call fsym_report(FSYM_ERR_IO, 'not written (an earlier write failed): '// &
                                  self%path, stat, errmsg)
