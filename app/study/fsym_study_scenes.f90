@@ -8,6 +8,7 @@
 module fsym_study_scenes
     use, intrinsic :: iso_fortran_env, only: output_unit
     use fsym
+    use fsym_kinds, only: fsym_same
     use fsym_h5, only: h5_file_t, fsym_h5_safe_name, fsym_h5md_header, fsym_make_dir, &
                        fsym_check_writable, fsym_exit_failure
     use fsym_diagnostics, only: coefficient_tracker_t
@@ -516,12 +517,12 @@ contains
         end do
         found = .false.; t1zero = 0.0_wp
         do j = 1, size(t1) - 1
-            if (sign(1.0_wp, p(j)) /= sign(1.0_wp, p(j + 1))) then
+            if (.not. fsym_same(sign(1.0_wp, p(j)), sign(1.0_wp, p(j + 1)))) then
                 lo = t1(j); hi = t1(j + 1); plo = p(j)
                 do it = 1, 60
                     mid = 0.5_wp * (lo + hi)
                     call m2_at(cx, mid, r)
-                    if (sign(1.0_wp, r%pend) == sign(1.0_wp, plo)) then
+                    if (fsym_same(sign(1.0_wp, r%pend), sign(1.0_wp, plo))) then
                         lo = mid; plo = r%pend
                     else
                         hi = mid
