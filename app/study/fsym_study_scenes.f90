@@ -624,8 +624,9 @@ contains
         character(len=FSYM_NAME_LEN) :: label
         real(wp), allocatable :: t1(:), em(:), pm(:)
         real(wp) :: t1zero
-        real(wp) :: d(size(NLADDER), 5), curve(2, NPER), nfe(size(NLADDER))
+        real(wp) :: d(size(NLADDER), 5), nfe(size(NLADDER))
         real(wp) :: nge(size(NLADDER))
+        real(wp), allocatable :: curve(:, :)     ! on the heap: 2 x NPER values
         logical :: found
         type(h5_file_t) :: f
         type(summary_t) :: r
@@ -634,6 +635,7 @@ contains
         integer :: m, k, st
         character(len=256) :: msg
         character(len=:), allocatable :: g
+        allocate (curve(2, NPER))
         call f%create(cx%outdir//'/results.h5')
         call file_header(cx, f, 'results', cx%period / NPER)
         call m2_scan(cx, t1, em, pm, t1zero, found)
