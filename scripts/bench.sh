@@ -10,13 +10,14 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/setup.sh
+source scripts/apps.sh   # fsym_app: the programs of app/
 FLAGS="-O3 -march=native -funroll-loops -std=f2008 -ffp-contract=off"
 VGFLAGS="-O2 -g -std=f2008 -ffp-contract=off"   # valgrind lacks some -march=native instructions
 cpu=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')
 if [ "${1:-}" = "--ratios" ]; then
-    fpm build --profile release --flag "$FLAGS" >/dev/null
+    bench=$(fsym_app_exe fsym-bench --profile release --flag "$FLAGS" 2>/dev/null)
     echo "cpu $cpu"
-    fpm run --profile release --flag "$FLAGS" fsym-bench -- ratios "${2:-101}" 2>/dev/null \
+    "$bench" ratios "${2:-101}" 2>/dev/null \
         | grep -E '^(ratio|floor|nspf) '
     exit 0
 fi
@@ -24,7 +25,7 @@ nrep=${1:-101}
 out=doc/benchmarks.md
 tmp=$(mktemp)
 trap 'rm -f "$tmp" "$tmp".*' EXIT
-fpm build --profile release --flag "$FLAGS" >/dev/null
+bench=$(fsym_app_exe fsym-bench --profile release --flag "$FLAGS" 2>/dev/null)
 {
     echo "# Benchmarks"
     echo
@@ -35,9 +36,9 @@ fpm build --profile release --flag "$FLAGS" >/dev/null
     echo "  with other jobs while this ran (load average before: $(cut -d' ' -f1-3 /proc/loadavg)):"
     echo "  every figure in this file comes from this CPU; the spreads say how noisy it was."
     echo "- Compiler: $(gfortran --version | head -1)"
-    echo "- Flags: \`$FLAGS\` (\`fpm run --profile release --flag \"$FLAGS\" fsym-bench -- all $nrep\`)"
+    echo "- Flags: \`$FLAGS\` (\`cd app && fpm run --profile release --flag \"$FLAGS\" fsym-bench -- all $nrep\`)"
     echo
-    fpm run --profile release --flag "$FLAGS" fsym-bench -- all "$nrep" 2>/dev/null \
+    "$bench" all "$nrep" 2>/dev/null \
         | grep -v '^\[' | tee "$tmp.all"
     echo "## Memory"
     echo
@@ -45,23 +46,23 @@ fpm build --profile release --flag "$FLAGS" >/dev/null
     echo "a user's model and the extrapolated force, RKN) each take N steps one \`step\` at a"
     echo "time, then FR takes N steps in one \`run\` call; the heap"
     echo "counts of valgrind are the same for N = 1e3 and N = 1e5"
-    echo "(\`fpm run --flag \"$VGFLAGS\" --runner \"valgrind\" fsym-bench -- steps N\`):"
+    echo "(\`cd app && fpm run --flag \"$VGFLAGS\" --runner \"valgrind\" fsym-bench -- steps N\`):"
     echo
     echo '```'
 } > "$tmp"
-fpm build --flag "$VGFLAGS" >/dev/null
+vgbench=$(fsym_app_exe fsym-bench --flag "$VGFLAGS" 2>/dev/null)
 for n in 1000 100000; do
-    fpm run --flag "$VGFLAGS" --runner "valgrind --leak-check=no" fsym-bench -- steps $n \
+    valgrind --leak-check=no "$vgbench" steps $n \
         > "$tmp.out" 2> "$tmp.vg"
     { echo "N = $n: $(grep -m1 'total heap usage' "$tmp.vg" | sed 's/^==[0-9]*== *//')"; } >> "$tmp"
 done
 {
     echo '```'
     echo
-    echo "Flat memory over 1e7 steps (\`fpm run --profile release --flag \"$FLAGS\" fsym-bench -- memory 10000000\`):"
+    echo "Flat memory over 1e7 steps (\`cd app && fpm run --profile release --flag \"$FLAGS\" fsym-bench -- memory 10000000\`):"
     echo
     echo '```'
-    fpm run --profile release --flag "$FLAGS" fsym-bench -- memory 10000000 2>/dev/null | grep -v '^\['
+    "$bench" memory 10000000 2>/dev/null | grep -v '^\['
     echo '```'
 } >> "$tmp"
 # The pair cost of the N-body table (us per force at the largest N over its N(N-1)/2 pairs),
@@ -80,9 +81,9 @@ cat >> "$tmp" <<'NOTES'
   over steps with the loop over the stage table inside, the model called directly through
   its type-bound procedures, no model-specific path. `model=builtin` lines are
   `kepler_model_t` (its force `kepler_field`, `src/fsym_kepler.f90`) through the kernel,
-  `model=user` lines a model in the user's own module (`app/fsym_bench_models.f90`, d = 2
+  `model=user` lines a model in the user's own module (`app/bench/fsym_bench_models.f90`, d = 2
   and 3 on explicit-shape arrays, d = 2 in blocks of bodies, as an experienced model writer
-  does); the hand loops (`app/fsym_handloops.f90`, `calls_*`) make the same model calls
+  does); the hand loops (`app/bench/fsym_handloops.f90`, `calls_*`) make the same model calls
   with the stages written out. What the kernel does beyond them, per step: it keeps q and
   v of the step's start (the first update of q and of v stores the old values in its own
   loop; a failing step is undone bitwise), tests every value it writes for NaN/Inf in the
@@ -98,7 +99,7 @@ cat >> "$tmp" <<'NOTES'
   `run/hand` lines come out near or below them. They are the price of a step that fails leaving the state
   bitwise as it was.
 - `expert/hand`: the loop an expert writes for this one problem without the library
-  (`app/fsym_expertloops.f90`): the Kepler force written into the step, the kick weight
+  (`app/bench/fsym_expertloops.f90`): the Kepler force written into the step, the kick weight
   folded into the force factor (f = -k/r^3, v += f x; the gradient kick
   f = p (-k - 4 w p) with p = 1/r^3, w = u h^3), each body's state in registers through
   all stages of a step, the first-same-as-last factor kept per body (one value, not a

@@ -14,6 +14,6 @@ mkdir -p "$out"
 # only the four sources it needs, with the project's flags
 gfortran -std=f2008 -O2 -ffp-contract=off -J "$out" -o "$out/fsym-kepler-torture" \
     src/fsym_kinds.f90 src/fsym_status.f90 src/fsym_kepler_universal.f90 \
-    app/fsym_kepler_check.f90 app/fsym_kepler_torture.f90
+    app/planets/fsym_kepler_check.f90 app/planets/fsym_kepler_torture.f90
 lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | sed 's/^/cpu: /' || true
 "$out/fsym-kepler-torture" "${1:-1000000}" "${2:-20070418}" "${3:-5e-11}"

@@ -16,18 +16,21 @@
 #   FSYM_RACE_VENV         the race's own Python environment (default
 #                          ~/.cache/forward-symplectic/race-venv), REBOUND pinned below
 #   FSYM_RACE_CMD          the library command template (default: the fsym-planets program built
-#                          here with fpm, when fpm.toml has it; else planets_race.py's default)
+#                          with fpm in app/, when app/fpm.toml has it; else planets_race.py's
+#                          default)
 #   FSYM_RACE_LIB_METHODS  library methods (comma-separated), FSYM_RACE_LIB_KS their steps P/k
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/setup.sh
+source scripts/apps.sh   # fsym_app: the programs of app/
 if [ "${1:-}" = --quick ]; then
     data=${2:-../shared/data/outer_solar_system.txt}
     [ -f "$data" ] || data=data/outer_solar_system.txt
     lscpu 2>/dev/null | sed -n 's/^Model name: */# cpu: /p' || true
     echo "# git: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
-    exec fpm run --profile release --flag "-std=f2008 -O2 -march=native -ffp-contract=off" \
-        fsym-planets-bench -- "$data" 2000 40 5
+    fsym_app fsym-planets-bench --profile release \
+        --flag "-std=f2008 -O2 -march=native -ffp-contract=off" -- "$data" 2000 40 5
+    exit
 fi
 REBOUND_VERSION=5.2.2
 venv=${FSYM_RACE_VENV:-$HOME/.cache/forward-symplectic/race-venv}
@@ -39,17 +42,16 @@ assert rebound.__version__ == '$REBOUND_VERSION'" >/dev/null 2>&1; then
 fi
 # the library side: build fsym-planets once and call the executable directly (fpm run would
 # re-check the build before every one of the race's runs); without it the race says so
-if [ -z "${FSYM_RACE_CMD:-}" ] && grep -q '^name = "fsym-planets"' fpm.toml; then
+if [ -z "${FSYM_RACE_CMD:-}" ] && grep -q '^name = "fsym-planets"' app/fpm.toml; then
     flags="-std=f2008 -O2 -ffp-contract=off"
-    if fpm build --profile release --flag "$flags" >&2; then
-        exe=$(fpm run --profile release --flag "$flags" fsym-planets --runner echo | tail -n 1)
+    if exe=$(fsym_app_exe fsym-planets --profile release --flag "$flags"); then
         args="state={state} system={system} method={method} h={h} nsteps={nsteps}"
         export FSYM_RACE_CMD="$exe race $args samples={samples}"
     else
         export FSYM_RACE_MISSING="fpm could not build fsym-planets"
     fi
 elif [ -z "${FSYM_RACE_CMD:-}" ]; then
-    export FSYM_RACE_MISSING="fpm.toml has no fsym-planets executable yet (issue 21)"
+    export FSYM_RACE_MISSING="app/fpm.toml has no fsym-planets executable yet (issue 21)"
 fi
 export FSYM_RACE_COMMAND="bash scripts/planets.sh${*:+ $*}"
 exec "$venv/bin/python" scripts/planets_race.py "$@"

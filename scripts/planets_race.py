@@ -59,7 +59,7 @@ exists); if it fails, the race reports REBOUND alone and says that the library s
 Nothing is ever invented for a side that did not run.
 
 State file (one per system, written to OUT_DIR/<system>.txt before the library runs), in the
-format of data/outer_solar_system.txt that app/fsym_solar_data.f90 reads: `#` comments; G; the
+format of data/outer_solar_system.txt that app/solar/fsym_solar_data.f90 reads: `#` comments; G; the
 end time T; a comment containing `(initial state`; lines `name mass x y z vx vy vz` (planets by
 increasing semi-major axis, then the central body, named Sun), heliocentric start (Sun at the
 origin at rest) in the inertial frame of that start; a comment containing `(reference state`;
@@ -94,9 +94,9 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 
-DEFAULT_LIB_CMD = ('fpm run --profile release --flag "-std=f2008 -O2 -ffp-contract=off" '
-                   'fsym-planets -- race state={state} system={system} method={method} h={h} '
-                   'nsteps={nsteps} samples={samples}')
+DEFAULT_LIB_CMD = ('bash scripts/apps.sh fsym-planets --profile release '
+                   '--flag "-std=f2008 -O2 -ffp-contract=off" -- race state={state} '
+                   'system={system} method={method} h={h} nsteps={nsteps} samples={samples}')
 DEFAULT_LIB_METHODS = "WH,WHC17,C(T+V)"
 LIB_KS = "7,10,14,20,28,40,56,80,112"
 

@@ -29,8 +29,9 @@ import numpy as np  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
-COEF_SCENES = ["eng3f", "eng4f", "eng4f2", "eng5f", "eng6f"]
-POINT_SCENES = ["backfr", "back3f", "back4f", "back4f2", "back5f", "back6f"]
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from fsym_report import study_scenes  # noqa: E402
+
 ONE_STEP = {"back4f", "back4f2", "back5f"}  # the paper shows one step 2 -> 3 (and numbers it)
 SOLID_FORWARD = {"back5f": {"A5"}}          # "forward algorithm A5 (solid circles)"
 
@@ -250,19 +251,18 @@ def main():
     figdir = sys.argv[2] if len(sys.argv) > 2 else os.path.join("doc", "figures")
     os.makedirs(figdir, exist_ok=True)
     done = 0
-    for scene in COEF_SCENES + POINT_SCENES + ["acoef", "scanm2", "scangfr5"]:
+    # the scene names and kinds come from fsym-study (OUT/scenes.txt); drawn kind by kind
+    draw = {"coefficients": lambda f, scene: coefficient_figures(f, scene, figdir),
+            "points": lambda f, scene: point_figure(f, scene, figdir),
+            "acoef": lambda f, scene: acoef_figure(f, figdir),
+            "scan": lambda f, scene: scan_figure(f, scene, figdir)}
+    scenes = study_scenes(out)
+    for scene in [name for kind in draw for name, k in scenes if k == kind]:
         path = os.path.join(out, scene + ".h5")
         if not os.path.exists(path):
             continue
         with h5py.File(path, "r") as f:
-            if scene in COEF_SCENES:
-                coefficient_figures(f, scene, figdir)
-            elif scene in POINT_SCENES:
-                point_figure(f, scene, figdir)
-            elif scene == "acoef":
-                acoef_figure(f, figdir)
-            else:
-                scan_figure(f, scene, figdir)
+            draw[dict(scenes)[scene]](f, scene)
         done += 1
         print(f"[plot] {scene}: figure(s) in {figdir}", flush=True)
     if done == 0:

@@ -130,10 +130,9 @@ fi
 : > "$tmp/solar.txt"; : > "$tmp/files.txt"; : > "$tmp/disk.txt"
 if command -v fpm > /dev/null 2>&1; then    # fsym-solar (HDF5) killed and resumed
     flags="-std=f2008 -O2 -ffp-contract=off"
-    solar=$root/$(cd "$root" && fpm run --flag "$flags" --runner echo fsym-solar 2>/dev/null \
-                  | tail -1)
-    study=$root/$(cd "$root" && fpm run --flag "$flags" --runner echo fsym-study 2>/dev/null \
-                  | tail -1)
+    source "$root/scripts/apps.sh"   # fsym_app_exe: the programs of app/
+    solar=$(fsym_app_exe fsym-solar --flag "$flags" 2>/dev/null)
+    study=$(fsym_app_exe fsym-study --flag "$flags" 2>/dev/null)
     for delay in 0.4 1.0 2.0; do
         if bash "$root/test/checkpoint_solar.sh" "$solar" "$delay" >> "$tmp/solar.txt" 2>&1
         then :; else rc=1; fi

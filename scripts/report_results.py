@@ -14,7 +14,7 @@ import sys
 import h5py
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fsym_report import text, write_atomic  # noqa: E402
+from fsym_report import study_scenes, text, write_atomic  # noqa: E402
 import numpy as np
 
 FACTOR = 1.5  # "about k times" (a number read off a figure): k/FACTOR <= ratio <= k*FACTOR
@@ -172,6 +172,10 @@ class SceneData:
 
     def distances(self, scene):
         return distances(os.path.join(self.out, scene + ".h5"))
+
+    def point_scenes(self):
+        """The force-point scenes, named by fsym-study (OUT/scenes.txt)."""
+        return [name for name, kind in study_scenes(self.out) if kind == "points"]
 
     def acoef(self):
         with h5py.File(os.path.join(self.out, "acoef.h5"), "r") as f:
@@ -425,11 +429,12 @@ def build_claims(s, sc):
           "errors" + (f"; not: {', '.join(bad)}" if bad else ""),
           rule_all([v for a, b, v in cases]), "every case above holds")
     mins = []
-    for scene in ["back3f", "back4f", "back4f2", "back5f", "back6f"]:
+    for scene in sc.point_scenes():   # the figures with forward and non-forward methods
         d = sc.distances(scene)
         fw = [m for m in d if m in s.d and s.d[m]["forward"]]
         nf = [m for m in d if m in s.d and not s.d[m]["forward"] and m != "RKN"]
-        mins.append((min(d[m] for m in nf) / max(d[m] for m in fw), scene))
+        if fw and nf:
+            mins.append((min(d[m] for m in nf) / max(d[m] for m in fw), scene))
     w = min(mins)
     c.more("closer", sec, "forward integrators evaluate the force closer to the trajectory "
            "than non-forward ones (every force-point figure)", w[0], 1,

@@ -8,6 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 FSYM_PLOTS=1 source scripts/setup.sh
+source scripts/apps.sh   # fsym_app: the programs of app/
 doc=doc/stability.md
 args=()
 while [ $# -gt 0 ]; do
@@ -17,7 +18,7 @@ mkdir -p out doc/figures
 FSYM_GIT_COMMIT=$(git rev-parse HEAD 2>/dev/null || echo unknown)
 if [ -n "$(git status --porcelain 2>/dev/null)" ]; then FSYM_GIT_COMMIT="$FSYM_GIT_COMMIT (modified)"; fi
 export FSYM_GIT_COMMIT
-fpm run --profile release --flag "-std=f2008 -O3 -ffp-contract=off" fsym-stability -- \
+fsym_app fsym-stability --profile release --flag "-std=f2008 -O3 -ffp-contract=off" -- \
     --out out/stability.h5 "${args[@]}"
 "$FSYM_PYTHON" scripts/check_h5md.py out/stability.h5
 "$FSYM_PYTHON" scripts/report_stability.py out/stability.h5 "$doc"

@@ -19,7 +19,7 @@
 !> a header of 31) is still read, into the same state, and resumes bitwise.
 module fsym_checkpoint
     use, intrinsic :: iso_fortran_env, only: int64
-    use fsym_kinds, only: wp, ik
+    use fsym_kinds, only: wp, ik, fsym_same
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_CHECKPOINT
     use fsym_kernel, only: kernel_state_t, KERNEL_NPACK, KERNEL_PACK_TAG, fsym_kernel_pack, &
                            fsym_kernel_unpack, fsym_kernel_slots, fsym_kernel_point_slots
@@ -104,36 +104,37 @@ contains
         if (size(ck, kind=ik) < V1_HEADER) then
             msg = 'checkpoint: shorter than its header (truncated?)'; return
         end if
-        if (ck(1) /= CKPT_TAG) then
+        if (.not. fsym_same(ck(1), CKPT_TAG)) then
             msg = 'checkpoint: not a forward-symplectic checkpoint (tag)'; return
         end if
-        if (ck(2) == 2.0_wp) then
+        if (fsym_same(ck(2), 2.0_wp)) then
             head = CKPT_HEADER; total = fsym_checkpoint_length(size(op), d, n, nslot)
-        else if (ck(2) == 1.0_wp) then
+        else if (fsym_same(ck(2), 1.0_wp)) then
             head = V1_HEADER; total = fsym_checkpoint_length(size(op), d, n, nslot) - 1 - &
                                        CKPT_HEADER + V1_HEADER
         else
             msg = 'checkpoint: format version is neither 1 nor 2'; return
         end if
-        if (ck(4) /= real(d, wp) .or. ck(5) /= real(n, wp)) then
+        if (.not. (fsym_same(ck(4), real(d, wp)) .and. fsym_same(ck(5), real(n, wp)))) then
             msg = 'checkpoint: of other dimensions or number of bodies than this integrator'
             return
         end if
-        if (ck(6) /= real(nop, wp) .or. ck(7) /= real(nslot, wp)) then
+        if (.not. (fsym_same(ck(6), real(nop, wp)) .and. fsym_same(ck(7), real(nslot, wp)))) then
             msg = 'checkpoint: of another method (stages or work slots differ)'; return
         end if
-        if (ck(3) /= real(total, wp) .or. size(ck, kind=ik) < total) then
+        if (.not. fsym_same(ck(3), real(total, wp)) .or. size(ck, kind=ik) < total) then
             msg = 'checkpoint: length does not fit (truncated or of another method)'; return
         end if
         if (head == CKPT_HEADER) then
-            if (ck(total) /= real(fsym_crc32(ck(1:total - 1)), wp)) then
+            if (.not. fsym_same(ck(total), real(fsym_crc32(ck(1:total - 1)), wp))) then
                 msg = 'checkpoint: checksum (CRC-32) does not match: the file is corrupt'
                 return
             end if
         end if
         k = head
-        if (any(ck(k + 1:k + nop) /= real(op, wp)) .or. any(ck(k + nop + 1:k + 2 * nop) /= c) &
-            .or. any(ck(k + 2 * nop + 1:k + 3 * nop) /= u)) then
+        if (.not. (all(fsym_same(ck(k + 1:k + nop), real(op, wp))) .and. &
+                   all(fsym_same(ck(k + nop + 1:k + 2 * nop), c)) .and. &
+                   all(fsym_same(ck(k + 2 * nop + 1:k + 3 * nop), u)))) then
             msg = 'checkpoint: of another method (op codes or coefficients differ)'; return
         end if
         if (head == CKPT_HEADER) then

@@ -2,7 +2,7 @@
 !> with a user force model. `init` allocates; `step` and `run` never do.
 module fsym_integrator
     use, intrinsic :: iso_c_binding, only: c_loc, c_intptr_t
-    use fsym_kinds, only: wp, ik
+    use fsym_kinds, only: wp, ik, fsym_same
     use fsym_status
     use fsym_scheme, only: scheme_t, fsym_scheme_custom, fsym_op_name
     use fsym_paper_schemes, only: fsym_scheme_by_name
@@ -519,7 +519,7 @@ contains
                 call fsym_text_put(buf, p, ', ')
                 call fsym_text_put_int(buf, p, int(j, ik))
                 call fsym_text_put(buf, p, ') = ')
-                if (x(i, j) /= x(i, j)) call fsym_text_put(buf, p, 'NaN')
+                if (.not. fsym_same(x(i, j), x(i, j))) call fsym_text_put(buf, p, 'NaN')
                 if (x(i, j) > huge(x)) call fsym_text_put(buf, p, '+Inf')
                 if (x(i, j) < -huge(x)) call fsym_text_put(buf, p, '-Inf')
                 return

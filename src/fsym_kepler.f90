@@ -5,7 +5,7 @@
 !> bodies about a fixed centre (columns of q).
 module fsym_kepler
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
-    use fsym_kinds, only: wp, ik
+    use fsym_kinds, only: wp, ik, fsym_same
     use fsym_status
     use fsym_force, only: force_model_t
     implicit none
@@ -116,7 +116,7 @@ contains
         m = opt_mu(mu)
         en = kepler_energy(q, v, m)
         a = 0.0_wp; e = 0.0_wp; period = 0.0_wp
-        if (.not. (en < 0.0_wp) .or. sum(q**2) == 0.0_wp) then
+        if (.not. (en < 0.0_wp) .or. fsym_same(sum(q**2), 0.0_wp)) then
             stat = FSYM_ERR_NOT_ELLIPTIC; return
         end if
         a = -m / (2.0_wp * en)

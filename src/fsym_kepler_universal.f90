@@ -32,7 +32,7 @@
 !> doc/planets.md (`scripts/kepler_torture.sh`).
 module fsym_kepler_universal
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-    use fsym_kinds, only: wp
+    use fsym_kinds, only: wp, fsym_same
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_ARGUMENT, FSYM_ERR_NONFINITE_STATE, &
                            FSYM_ERR_NO_CONVERGENCE
     implicit none
@@ -120,7 +120,7 @@ contains
         if (.not. (r0 > 0.0_wp .and. ieee_is_finite(r0))) then
             stat = FSYM_ERR_BAD_ARGUMENT; return
         end if
-        if (dt == 0.0_wp) return
+        if (fsym_same(dt, 0.0_wp)) return
         eta = q(1) * v(1) + q(2) * v(2) + q(3) * v(3)
         beta = 2.0_wp * gm / r0 - (v(1)**2 + v(2)**2 + v(3)**2)
         ! near-parabolic: the two terms cancel, so take beta from the exact r and v^2 (the
@@ -135,7 +135,7 @@ contains
             period = TWO_PI * gm / (beta * sqrt(beta))
             if (ieee_is_finite(period) .and. abs(dt) > 0.5_wp * period) then
                 dtr = dt - period * anint(dt / period)
-                if (dtr == 0.0_wp) return
+                if (fsym_same(dtr, 0.0_wp)) return
             end if
         end if
         call solve_universal(gm, r0, eta, beta, dtr, period, s, g1, g2, g3, r, stat)
@@ -206,7 +206,7 @@ contains
                 s = next_trial(lo, hi, lo_open, hi_open)
                 cycle
             end if
-            if (f == 0.0_wp) return
+            if (fsym_same(f, 0.0_wp)) return
             if (f < 0.0_wp) then
                 lo = s; lo_open = .false.
             else

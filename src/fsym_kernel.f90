@@ -16,7 +16,7 @@
 !> state is refused. `ask` (reverse communication): every evaluation suspends the call
 !> (`KERNEL_SUSPEND`); the caller fills the slot `fsym_kernel_request` names, then calls again.
 module fsym_kernel
-    use fsym_kinds, only: wp, ik, iwp
+    use fsym_kinds, only: wp, ik, iwp, same => fsym_same
     use fsym_status
     use fsym_force, only: force_model_t, recorder_t, EVAL_FORCE, EVAL_GRADIENT, &
                           EVAL_EXTRAPOLATED
@@ -127,7 +127,7 @@ contains
         if (.not. ks%active) then
             if (nsteps < 1) return
             ks%pc = 0
-            if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
+            if (same(h, 0.0_wp) .or. .not. abs(h) <= huge(h)) then
                 stat = FSYM_ERR_BAD_STEP; return
             end if
             if (.not. fsym_loop_entry(m, q, v, w(:, :, ks%iqlast), ks%have_a, moved)) then
@@ -199,7 +199,7 @@ contains
                     end if
                 case (OP_EXTRAP_KICK)
                     shift = u(k) * hs * hs; iy = ks%iae; iyf = ks%iae; fa = .false.
-                    fresh = .not. ks%have_x .or. ks%xshift /= shift
+                    fresh = .not. (ks%have_x .and. ks%xshift <= shift .and. ks%xshift >= shift)
                     if (fresh) then
                         call shifted(m, q, shift, a, w(:, :, ks%iqe))
                         ks%xshift = shift; ks%have_x = .false.
@@ -445,27 +445,27 @@ contains
         integer, intent(out) :: stat                !! status
         character(len=*), intent(inout) :: msg      !! which field does not fit
         stat = FSYM_ERR_CHECKPOINT
-        if (r(KERNEL_NPACK) /= KERNEL_PACK_TAG) then
+        if (.not. same(r(KERNEL_NPACK), KERNEL_PACK_TAG)) then
             msg = 'kernel state: not a packed kernel state (tag)'
-        else if (any(r([5, 6, 7, 17]) /= real([ks%d, ks%n, ks%nslot, ks%nop], wp))) then
+        else if (.not. all(same(r([5, 6, 7, 17]), real([ks%d, ks%n, ks%nslot, ks%nop], wp)))) then
             msg = 'kernel state: dimensions, particles, slots or stages differ from this one'
-        else if (r(8) /= flag(ks%comp)) then
+        else if (.not. same(r(8), flag(ks%comp))) then
             msg = 'kernel state: compensated in one, not in the other'
-        else if (.not. all(r(8:14) == 0.0_wp .or. r(8:14) == 1.0_wp)) then
+        else if (.not. all(same(r(8:14), 0.0_wp) .or. same(r(8:14), 1.0_wp))) then
             msg = 'kernel state: a flag is neither 0 nor 1'
         else if (.not. all(r(3:4) >= 0.0_wp .and. r(3:4) < 2.0_wp**53)) then
             msg = 'kernel state: evaluation counts out of range'
-        else if (.not. (r(15) >= 0.0_wp .and. r(15) <= ks%nop + 1 .and. r(15) == aint(r(15)) .and. &
-                        r(16) >= REQ_NONE .and. r(16) <= REQ_FORCE_SHIFTED .and. &
-                        r(16) == aint(r(16)))) then
+        else if (.not. (r(15) >= 0.0_wp .and. r(15) <= ks%nop + 1 .and. &
+                        same(r(15), aint(r(15))) .and. r(16) >= REQ_NONE .and. &
+                        r(16) <= REQ_FORCE_SHIFTED .and. same(r(16), aint(r(16))))) then
             msg = 'kernel state: stage or request out of range'
         else if (.not. (abs(r(1)) <= huge(r(1)) .and. abs(r(2)) <= huge(r(2)))) then
             msg = 'kernel state: step or shift not finite'
         else
             ks%h = r(1); ks%xshift = r(2); ks%nf = int(r(3), ik); ks%ng = int(r(4), ik)
-            ks%have_a = r(9) == 1.0_wp; ks%have_g = r(10) == 1.0_wp
-            ks%have_x = r(11) == 1.0_wp; ks%active = r(12) == 1.0_wp
-            ks%qsaved = r(13) == 1.0_wp; ks%vsaved = r(14) == 1.0_wp
+            ks%have_a = same(r(9), 1.0_wp); ks%have_g = same(r(10), 1.0_wp)
+            ks%have_x = same(r(11), 1.0_wp); ks%active = same(r(12), 1.0_wp)
+            ks%qsaved = same(r(13), 1.0_wp); ks%vsaved = same(r(14), 1.0_wp)
             ks%pc = nint(r(15)); ks%req = nint(r(16))
             stat = FSYM_SUCCESS
         end if

@@ -27,6 +27,7 @@
 !> its coefficient table. Labels outside the catalogue (`A7`, `M2(-0.3)`) have no id; set
 !> them up by name with FSYMWL/FSYMIL.
 subroutine FSYMID(NAME, METH)
+    use fsym_kinds, only: fsym_same
     use fsym_scheme, only: scheme_t
     use fsym_paper_schemes, only: fsym_scheme_by_name, fsym_catalogue, FSYM_NAME_LEN
     implicit none
@@ -39,12 +40,12 @@ subroutine FSYMID(NAME, METH)
     METH = 0
     call fsym_scheme_by_name(NAME, s, st, msg)
     if (st /= 0) return
-    cat = fsym_catalogue()
+    allocate (cat, source=fsym_catalogue())
     do k = 1, size(cat)
         call fsym_scheme_by_name(cat(k), e, st, msg)
         if (st /= 0) cycle
         if (e%nop /= s%nop) cycle
-        if (all(e%op == s%op) .and. all(e%c == s%c) .and. all(e%u == s%u)) then
+        if (all(e%op == s%op) .and. all(fsym_same(e%c, s%c)) .and. all(fsym_same(e%u, s%u))) then
             METH = k
             return
         end if
@@ -83,7 +84,7 @@ subroutine FSYMIN(METH, ND, N, RW, LRW, IW, LIW, INFO)
     integer :: need_r, need_i
     call legacy_sizes(METH, ND, N, need_r, need_i, INFO)
     if (INFO /= FSYM_SUCCESS) return
-    cat = fsym_catalogue()
+    allocate (cat, source=fsym_catalogue())
     call fsym_scheme_by_name(cat(METH), s, INFO)
     if (INFO /= FSYM_SUCCESS) return
     call legacy_setup(s, METH, ND, N, RW, LRW, IW, LIW, INFO)
@@ -357,11 +358,11 @@ end subroutine FSYMRS
 subroutine FSYMCV(ICHK, X)
     use, intrinsic :: iso_fortran_env, only: int32
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_CONVENTION
-    use fsym_kinds, only: wp
+    use fsym_kinds, only: wp, fsym_same
     implicit none
     integer(int32), intent(inout) :: ICHK(*)   !! (1, 2) on entry; the verdict on return
     real(wp), intent(in) :: X                  !! 1.5D0
-    if (ICHK(1) == 1 .and. ICHK(2) == 2 .and. X == 1.5_wp) then
+    if (ICHK(1) == 1 .and. ICHK(2) == 2 .and. fsym_same(X, 1.5_wp)) then
         ICHK(1:2) = FSYM_SUCCESS
     else if (ICHK(1) == 1 .and. ICHK(2) == 0) then
         ! a little-endian 8-byte integer array (1, 2) seen as 4-byte words: 1, 0, 2, 0

@@ -73,7 +73,7 @@ contains
         type(scheme_t) :: s
         character(len=FSYM_NAME_LEN), allocatable :: cat(:)
         lrw = 0; liw = 0
-        cat = fsym_catalogue()
+        allocate (cat, source=fsym_catalogue())
         if (meth < 1 .or. meth > size(cat)) then
             info = FSYM_ERR_UNKNOWN_METHOD; return
         end if

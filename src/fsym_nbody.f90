@@ -33,7 +33,7 @@
 !> routines (the MPI model's) take the same sums in the same order. With one block
 !> (n <= FSYM_NBODY_BLOCK) the order is plain ascending k.
 module fsym_nbody
-    use fsym_kinds, only: wp
+    use fsym_kinds, only: wp, fsym_same
     use fsym_status, only: fsym_report, FSYM_SUCCESS, FSYM_ERR_SHAPE, FSYM_ERR_BAD_ARGUMENT, &
                            FSYM_ERR_NOT_INITIALIZED
     use fsym_force, only: force_model_t
@@ -889,7 +889,7 @@ contains
             if (.not. (m(k) > 0.0_wp .and. m(k) <= huge(m))) exit
         end do
         k = min(k, size(m))
-        if (m(k) == 0.0_wp) then
+        if (fsym_same(m(k), 0.0_wp)) then
             write (buf, '(a,i0,a)') 'nbody: body ', k, ' has mass 0; massless test particles '// &
                 'are not supported (give it a mass far below the others'')'
         else

@@ -40,7 +40,7 @@
 !> the pair, so the host can hand over. Every face then reports the library status
 !> FSYM_ERR_ENCOUNTER with that message (`failure`, called by the faces after a failed step).
 module fsym_planets
-    use fsym_kinds, only: wp, ik
+    use fsym_kinds, only: wp, ik, fsym_same
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_ARGUMENT, FSYM_ERR_SHAPE, fsym_report, &
                            fsym_int_text, FSYM_ERR_ENCOUNTER
     use fsym_force, only: force_model_t
@@ -125,7 +125,7 @@ contains
             return
         end if
         self%nm = count(m > 0.0_wp)
-        if (any(m(1:self%nm) == 0.0_wp)) then
+        if (any(fsym_same(m(1:self%nm), 0.0_wp))) then
             call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'planets: massive bodies first, then '// &
                              'the test particles (mass 0)', stat, errmsg)
             return
@@ -351,6 +351,7 @@ contains
     !> Whether `drift` is overridden: yes.
     logical function planets_has_drift(self)
         class(planets_model_t), intent(in) :: self  !! the model
+        associate (unused => self); end associate   ! the interface's arguments
         planets_has_drift = .true.
     end function planets_has_drift
 

@@ -2,7 +2,7 @@
 !> clock (time as t0 + k h, never a running sum), and the evaluation counters. The splitting
 !> integrator and the Runge-Kutta-Nystrom comparator extend it.
 module fsym_stepper
-    use fsym_kinds, only: wp, ik
+    use fsym_kinds, only: wp, ik, fsym_same
     use fsym_status
     use fsym_force, only: force_model_t, recorder_t
     implicit none
@@ -199,12 +199,13 @@ contains
         logical :: stop
         character(len=512) :: msg
         span = t_end - self%time()
-        if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h)) .or. .not. abs(span) <= huge(span)) then
+        if (fsym_same(h, 0.0_wp) .or. .not. abs(h) <= huge(h) .or. &
+            .not. abs(span) <= huge(span)) then
             call fsym_report(FSYM_ERR_BAD_STEP, 'run_to: h must be finite and non-zero, '// &
                              't_end finite', stat, errmsg)
             return
         end if
-        if (span /= 0.0_wp .and. (span > 0.0_wp .neqv. h > 0.0_wp)) then
+        if (.not. fsym_same(span, 0.0_wp) .and. (span > 0.0_wp .neqv. h > 0.0_wp)) then
             call fsym_report(FSYM_ERR_BAD_STEP, 'run_to: h points away from t_end', stat, &
                              errmsg)
             return
@@ -355,7 +356,7 @@ contains
         integer(ik), intent(in) :: k             !! steps completed
         self%nforce = nf; self%ngrad = ng
         if (k < 1) return
-        if (h /= self%h_now) then
+        if (.not. fsym_same(h, self%h_now)) then
             self%t_base = self%time()
             self%k_since = 0
             self%h_now = h

@@ -8,9 +8,8 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 exe=${1:-}
 delay=${2:-1.0}
 if [ -z "$exe" ]; then
-    exe=$(cd "$root" && fpm run --flag "-std=f2008 -O2 -ffp-contract=off" --runner echo \
-        fsym-solar 2>/dev/null | tail -1)
-    exe=$root/$exe
+    source "$root/scripts/apps.sh"   # fsym_app_exe: the programs of app/ (fpm package)
+    exe=$(fsym_app_exe fsym-solar --flag "-std=f2008 -O2 -ffp-contract=off" 2>/dev/null)
 fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

@@ -1,4 +1,4 @@
-!> One imaginary-time run written to HDF5 (H5MD 1.1 style, app/fsym_h5.f90): the ground state
+!> One imaginary-time run written to HDF5 (H5MD 1.1 style, app/io/fsym_h5.f90): the ground state
 !> (or the lowest `nstates` states) of a benchmark problem, its energy histories (<H> and the
 !> norm-decay energy after every step) and the grid.
 !> Usage: fsym_itp_run PROBLEM METHOD TAU TEND FILE.h5 [NSTATES]

@@ -12,8 +12,10 @@
 #   run.sh c DIR            the C client with `pkg-config --libs --static fsym`, compared
 #   run.sh cmake DIR        the three through find_package(forward-symplectic), compared with
 #                           each other and with the Makefile-style modern client
-#   run.sh fpm DIR          the three against `fpm install` (exit 77, skipped, without fpm),
-#                           whose modules must include every module of the CMake install
+#   run.sh fpm DIR          the three against `bash scripts/fpm_install.sh` (fpm install plus
+#                           the pkg-config and CMake files; exit 77, skipped, without fpm):
+#                           the same modules as the CMake install, the C client through its
+#                           fsym.pc, the three again through its find_package
 #   run.sh example DIR [PFUNIT_DIR]
 #                           example/user_model_test: a user's model tested with pFUnit,
 #                           built with CMake against DIR/prefix, run by its own CTest
@@ -109,34 +111,47 @@ stage_fpm() {
     command -v fpm >/dev/null 2>&1 || { say "fpm not on PATH: skipped"; exit 77; }
     need_prefix; mkdir -p "$work"
     local p=$work/prefix inc=include/forward-symplectic
-    say "fpm install --prefix $work/prefix --includedir $inc: the CMake layout, -lfsym"
+    say "bash scripts/fpm_install.sh $p: fpm install in the CMake layout, with fsym.pc and"
+    say "  the CMake package files"
     # the flags of fpm_consumer/check.sh: both then use one build of this package
-    (cd "$root" && quiet fpm install --flag "${fflags[*]}" --prefix "$p" --includedir "$inc")
+    quiet bash "$root/scripts/fpm_install.sh" "$p" --flag "${fflags[*]}"
     [ -f "$p/lib/libfsym.a" ] || { say "fpm install gave no lib/libfsym.a"; exit 1; }
-    # every module the CMake install has (the library's, fsym_checks among them) is there too
+    # the same modules as the CMake install (the library's, fsym_checks among them), no more
     local m missing=() extra=()
     for m in "$prefix/$inc"/*.mod; do
         [ -f "$p/$inc/$(basename "$m")" ] || missing+=("$(basename "$m")")
     done
     for m in "$p/$inc"/*.mod; do
-        [ -f "$prefix/$inc/$(basename "$m")" ] || extra+=("$(basename "$m" .mod)")
+        [ -f "$prefix/$inc/$(basename "$m")" ] || extra+=("$(basename "$m")")
     done
-    if [ ${#missing[@]} -gt 0 ]; then
-        say "fpm install lacks modules of the CMake install: ${missing[*]}"; exit 1
+    if [ ${#missing[@]} -gt 0 ] || [ ${#extra[@]} -gt 0 ]; then
+        say "fpm and CMake installs differ: only CMake: ${missing[*]:-none}; only fpm: \
+${extra[*]:-none}"; exit 1
     fi
-    say "fpm install has every module of the CMake install ($(ls "$prefix/$inc"/*.mod | wc -l))"
-    [ ${#extra[@]} -eq 0 ] || say "and, as fpm installs every module it builds, ${#extra[@]} of \
-the programs and examples: ${extra[*]}"
+    say "fpm install has the modules of the CMake install, no more ($(ls "$p/$inc"/*.mod | wc -l))"
+    [ -f "$p/include/fsym.h" ] || { say "no include/fsym.h in the fpm install"; exit 1; }
     gfortran "${fflags[@]}" "$here/f77_nbody.f" -L"$p/lib" -lfsym \
         -o "$work/f77_nbody"
-    cc -O2 -ffp-contract=off -I"$root/include" "$here/c_nbody.c" -L"$p/lib" \
-        -lfsym -lgfortran -lm -o "$work/c_nbody"
+    local libs
+    libs=$(PKG_CONFIG_PATH="$p/lib/pkgconfig" pkg-config --cflags --libs --static fsym)
+    say "cc c_nbody.c \$(pkg-config --cflags --libs --static fsym) of the fpm install"
+    # shellcheck disable=SC2086
+    cc -O2 -ffp-contract=off "$here/c_nbody.c" $libs -o "$work/c_nbody"
     gfortran "${fflags[@]}" -I"$p/$inc" "$here/modern_nbody.f90" -L"$p/lib" \
         -lfsym -J "$work" -o "$work/modern_nbody"
     "$work/modern_nbody" > "$work/modern.txt"
     "$work/f77_nbody" > "$work/f77.txt"
     "$work/c_nbody" > "$work/c.txt"
     compare "$work" f77 c
+    say "CMake consumer against the fpm install: find_package(forward-symplectic)"
+    mkdir -p "$work/cmake"
+    quiet cmake -S "$here/cmake_consumer" -B "$work/cmake" -DCMAKE_PREFIX_PATH="$p"
+    quiet cmake --build "$work/cmake" -j "$(nproc)"
+    local c
+    for c in modern f77 c; do "$work/cmake/${c}_nbody" > "$work/cmake/$c.txt"; done
+    compare "$work/cmake" f77 c
+    cmp -s "$work/cmake/modern.txt" "$work/modern.txt" \
+        || { say "CMake consumer and direct builds against the fpm install differ"; exit 1; }
 }
 
 stage_example() {

@@ -81,6 +81,9 @@ class FakeScenes:
     def distances(self, scene):
         return self.d[scene]
 
+    def point_scenes(self):
+        return list(self.d)
+
     def acoef(self):
         return self.alpha_a, self.a0
 

@@ -5,10 +5,10 @@
 #   1. the consumer's link line names no -llapack, -lblas, -lhdf5* (fpm passes a dependency's
 #      [build] link on to its consumers, so the library must declare none);
 #   2. `nm` of the executable has no LAPACK or HDF5 symbol, and `ldd` lists no such library;
-#   3. as a control that the check can fail: the same test on this package's own fsym-stability
-#      link line finds -llapack (the program that needs it), and on fsym-solar, which is built
-#      from the same app/ folder (and links HDF5, which it uses), finds neither LAPACK nor the
-#      study module that calls it (fpm links into each program only the app/ modules it uses).
+#   3. as a control that the check can fail: `nm` of the programs' package (app/, fsym-apps)
+#      finds LAPACK in fsym-stability (the program that needs it), and in fsym-solar, built
+#      from the same package (and linking HDF5, which it uses), neither LAPACK (nm, ldd) nor
+#      the study module that calls it (each program takes only the app/ modules it uses).
 # Exits non-zero on any failure. Run from anywhere; needs fpm on PATH.
 set -euo pipefail
 command -v fpm > /dev/null 2>&1 || { echo "[fpm-consumer] fpm not on PATH: skipped"; exit 77; }
@@ -73,22 +73,19 @@ else
     cat "$tmp/abs.log"; say "FAIL: absolute path dependency failed otherwise"; status=1
 fi
 
-# Control: the same checks detect LAPACK where it is linked, and per-program pruning of app/.
-cd "$root"
-fpm build --flag "$flags" --verbose > "$tmp/self.log" 2>&1 || { cat "$tmp/self.log"; exit 1; }
-stab=$(grep -E -- "-o [^ ]*app/fsym-stability( |$)" "$tmp/self.log" | tail -1 || true)
-solar=$(grep -E -- "-o [^ ]*app/fsym-solar( |$)" "$tmp/self.log" | tail -1 || true)
-if [ -z "$stab" ] || [ -z "$solar" ]; then
-    # already built: force the link lines by removing the two executables
-    find build -type f \( -name fsym-stability -o -name fsym-solar \) -path '*app*' -delete
-    fpm build --flag "$flags" --verbose > "$tmp/self.log" 2>&1
-    stab=$(grep -E -- "-o [^ ]*app/fsym-stability( |$)" "$tmp/self.log" | tail -1 || true)
-    solar=$(grep -E -- "-o [^ ]*app/fsym-solar( |$)" "$tmp/self.log" | tail -1 || true)
-fi
-if grep -qE -- '-llapack' <<< "$stab"; then say "control: fsym-stability links -llapack (detected)"
-else say "FAIL: control: -llapack not found on fsym-stability's link line"; status=1; fi
-if grep -qE -- '-l(lapack|blas)\b' <<< "$solar" || grep -q 'fsym_linear_stability' <<< "$solar"; then
+# Control: the same checks detect LAPACK where it is linked, and per-program pruning of the
+# programs' package app/ (fsym-apps: its [build] link names LAPACK for every program, after
+# its library archive, and each program takes from that archive only the modules it uses).
+cd "$root/app"
+fpm build --flag "$flags" > "$tmp/self.log" 2>&1 || { cat "$tmp/self.log"; exit 1; }
+stab=$(fpm run --flag "$flags" --runner echo fsym-stability 2>/dev/null | tail -1)
+solar=$(fpm run --flag "$flags" --runner echo fsym-solar 2>/dev/null | tail -1)
+lapack_syms='^ +U (dsyev|dgeev)_?$'
+if nm "$stab" | grep -qE "$lapack_syms"; then say "control: fsym-stability calls LAPACK (detected)"
+else say "FAIL: control: no LAPACK symbol found in fsym-stability"; status=1; fi
+if nm "$solar" | grep -qE "$lapack_syms|fsym_linear_stability" \
+    || ldd "$solar" | grep -qE 'lib(lapack|blas)'; then
     say "FAIL: control: fsym-solar links LAPACK or the LAPACK study module"; status=1
-else say "control: fsym-solar links neither LAPACK nor app/fsym_linear_stability.f90 (pruned)"; fi
+else say "control: fsym-solar has neither LAPACK nor app/study/fsym_linear_stability.f90 (pruned)"; fi
 [ $status -eq 0 ] && say "the fpm consumer links neither LAPACK nor HDF5"
 exit $status

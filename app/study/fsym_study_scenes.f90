@@ -8,6 +8,7 @@
 module fsym_study_scenes
     use, intrinsic :: iso_fortran_env, only: output_unit
     use fsym
+    use fsym_kinds, only: fsym_same
     use fsym_h5, only: h5_file_t, fsym_h5_safe_name, fsym_h5md_header, fsym_make_dir, &
                        fsym_check_writable, fsym_exit_failure
     use fsym_diagnostics, only: coefficient_tracker_t
@@ -24,7 +25,14 @@ module fsym_study_scenes
     character(len=*), parameter, public :: SCENES(*) = [character(len=8) :: 'eng3f', &
         'backfr', 'back3f', 'eng4f', 'back4f', 'eng4f2', 'back4f2', 'acoef', 'eng5f', &
         'back5f', 'eng6f', 'back6f', 'scanm2', 'scangfr5', 'results']
-        !! every scene, in the order `--all` runs them
+        !! every scene, in the order `--all` runs them: the one list of scene names (the
+        !! study writes it to `<out>/scenes.txt`, which the report and plot scripts read)
+    character(len=*), parameter, public :: SCENE_KINDS(*) = [character(len=12) :: &
+        'coefficients', 'points', 'points', 'coefficients', 'points', 'coefficients', &
+        'points', 'acoef', 'coefficients', 'points', 'coefficients', 'points', 'scan', &
+        'scan', 'results']
+        !! the kind of each scene of SCENES (what its file holds, hence how it is drawn):
+        !! coefficient curves, force points, the GFR5 backward step, a scan, the results
     character(len=*), parameter :: UNIT_SYSTEM = 'Kepler units: G M = 1, m = 1; length L '// &
         '(the orbit starts at q = (10, 0) L), time T = sqrt(L^3/(G M)); energies per unit '// &
         'mass in L^2 T-2; coefficients carry T-4 from the division by eps^4'
@@ -65,7 +73,25 @@ contains
         call fsym_make_dir(cx%outdir)
         call fsym_check_writable(cx%outdir//'/results.h5', st, msg)
         if (st /= 0) call study_die('cannot write into the output directory '//cx%outdir)
+        call write_scene_list(cx%outdir//'/scenes.txt')
     end subroutine study_init
+
+    !> `<out>/scenes.txt`: every scene and its kind, one `name kind` line each, in the order
+    !> `--all` runs them (scripts/plot_figures.py and scripts/report_results.py take the
+    !> scene names from it, so SCENES is their one source).
+    subroutine write_scene_list(path)
+        character(len=*), intent(in) :: path     !! the file (replaced)
+        integer :: u, ios, ios_close, k
+        if (size(SCENE_KINDS) /= size(SCENES)) call study_die('SCENE_KINDS does not match SCENES')
+        open (newunit=u, file=path, status='replace', action='write', iostat=ios)
+        if (ios /= 0) call study_die('cannot write '//path)
+        do k = 1, size(SCENES)
+            if (ios == 0) write (u, '(a,1x,a)', iostat=ios) trim(SCENES(k)), &
+                trim(SCENE_KINDS(k))
+        end do
+        close (u, iostat=ios_close)
+        if (ios /= 0 .or. ios_close /= 0) call study_die('cannot write '//path)
+    end subroutine write_scene_list
 
     !> Run one scene by name.
     subroutine study_scene(cx, name)
@@ -158,32 +184,24 @@ contains
         class(stepper_t), intent(in) :: s
         real(wp), intent(in) :: eps
         type(scheme_t) :: sch
-        integer :: st
-        character(len=256) :: msg
-        call f%set_attr(g, 'method', trim(s%name()), st, msg); call need(st, msg)
-        call f%set_attr(g, 'forward', merge(1, 0, s%is_forward()), st, msg); call need(st, msg)
-        call f%set_attr(g, 'symplectic', merge(1, 0, s%is_symplectic()), st, msg)
-        call need(st, msg)
-        call f%set_attr(g, 'splitting', merge(1, 0, s%is_splitting()), st, msg)
-        call need(st, msg)
-        call f%set_attr(g, 'forces_per_step', s%forces_per_step(), st, msg); call need(st, msg)
-        call f%set_attr(g, 'gradients_per_step', s%gradients_per_step(), st, msg)
-        call need(st, msg)
-        call f%set_attr(g, 'force_evaluations', int(s%force_evaluations()), st, msg)
-        call need(st, msg)
-        call f%set_attr(g, 'gradient_evaluations', int(s%gradient_evaluations()), st, msg)
-        call need(st, msg)
-        call f%set_attr(g, 'eps', eps, st, msg); call need(st, msg)
-        call f%set_attr(g, 'compensated_summation', 1, st, msg); call need(st, msg)
+        call f%set_attr(g, 'method', trim(s%name()))
+        call f%set_attr(g, 'forward', merge(1, 0, s%is_forward()))
+        call f%set_attr(g, 'symplectic', merge(1, 0, s%is_symplectic()))
+        call f%set_attr(g, 'splitting', merge(1, 0, s%is_splitting()))
+        call f%set_attr(g, 'forces_per_step', s%forces_per_step())
+        call f%set_attr(g, 'gradients_per_step', s%gradients_per_step())
+        call f%set_attr(g, 'force_evaluations', int(s%force_evaluations()))
+        call f%set_attr(g, 'gradient_evaluations', int(s%gradient_evaluations()))
+        call f%set_attr(g, 'eps', eps)
+        call f%set_attr(g, 'compensated_summation', 1)
         select type (s)
         type is (integrator_t)
             sch = s%scheme()
-            call f%set_attr(g, 'op', sch%op, st, msg); call need(st, msg)
-            call f%set_attr(g, 'c', sch%c, st, msg); call need(st, msg)
-            call f%set_attr(g, 'u', sch%u, st, msg); call need(st, msg)
+            call f%set_attr(g, 'op', sch%op)
+            call f%set_attr(g, 'c', sch%c)
+            call f%set_attr(g, 'u', sch%u)
             call f%set_attr(g, 'op_codes', 'OP_DRIFT=1 OP_KICK=2 OP_GRAD_KICK=3 '// &
-                            'OP_EXTRAP_KICK=4', st, msg)
-            call need(st, msg)
+                            'OP_EXTRAP_KICK=4')
         end select
     end subroutine method_attrs
 
@@ -193,37 +211,29 @@ contains
         type(h5_file_t), intent(inout) :: f
         character(len=*), intent(in) :: scene
         real(wp), intent(in) :: eps
-        integer :: st
-        character(len=256) :: msg
-        call fsym_h5md_header(f, 'fsym-study', FSYM_VERSION, UNIT_SYSTEM, st, msg)
-        call need(st, msg)
-        call f%set_attr('parameters', 'scene', scene, st, msg); call need(st, msg)
-        call f%set_attr('parameters', 'eps', eps, st, msg); call need(st, msg)
-        call f%set_attr('parameters', 'period', cx%period, st, msg); call need(st, msg)
-        call f%set_attr('parameters', 'mu', cx%kep%mu, st, msg); call need(st, msg)
-        call f%set_attr('parameters', 'q0', cx%q0, st, msg); call need(st, msg)
-        call f%set_attr('parameters', 'v0', cx%v0, st, msg); call need(st, msg)
+        call fsym_h5md_header(f, 'fsym-study', FSYM_VERSION, UNIT_SYSTEM)
+        call f%set_attr('parameters', 'scene', scene)
+        call f%set_attr('parameters', 'eps', eps)
+        call f%set_attr('parameters', 'period', cx%period)
+        call f%set_attr('parameters', 'mu', cx%kep%mu)
+        call f%set_attr('parameters', 'q0', cx%q0)
+        call f%set_attr('parameters', 'v0', cx%v0)
     end subroutine file_header
 
     !> H5MD box of a particle group (open 2D space) and its `label`.
     subroutine particle_group(f, g, label)
         type(h5_file_t), intent(inout) :: f
         character(len=*), intent(in) :: g, label
-        integer :: st
-        character(len=256) :: msg
-        call f%set_attr(g, 'label', trim(label), st, msg); call need(st, msg)
-        call f%set_attr(g//'/box', 'dimension', 2, st, msg); call need(st, msg)
-        call f%set_attr(g//'/box', 'boundary', [character(len=4) :: 'none', 'none'], st, msg)
-        call need(st, msg)
+        call f%set_attr(g, 'label', trim(label))
+        call f%set_attr(g//'/box', 'dimension', 2)
+        call f%set_attr(g//'/box', 'boundary', [character(len=4) :: 'none', 'none'])
     end subroutine particle_group
 
     !> The `unit` attribute of a dataset.
     subroutine unit(f, path, u)
         type(h5_file_t), intent(inout) :: f
         character(len=*), intent(in) :: path, u
-        integer :: st
-        character(len=256) :: msg
-        call f%set_attr(path, 'unit', u, st, msg); call need(st, msg)
+        call f%set_attr(path, 'unit', u)
     end subroutine unit
 
     ! ---------------------------------------------------------------- coefficient runs
@@ -277,7 +287,7 @@ contains
         if (present(f)) then
             call flush_slab()
             call particle_group(f, pg, res%name)
-            call f%set_attr(og, 'label', trim(res%name), st, msg); call need(st, msg)
+            call f%set_attr(og, 'label', trim(res%name))
             call unit(f, pg//'/position/time', 'T'); call unit(f, pg//'/position/value', 'L')
             call unit(f, pg//'/velocity/time', 'T')
             call unit(f, pg//'/velocity/value', 'L T-1')
@@ -304,22 +314,18 @@ contains
         end subroutine sample
         subroutine flush_slab()
             if (nb == 0) return
-            call f%append(pg//'/position/step', bs(1:nb), st, msg); call need(st, msg)
-            call f%append(pg//'/position/time', bt(1:nb), st, msg); call need(st, msg)
-            call f%append(pg//'/position/value', bq(:, :, 1:nb), st, msg); call need(st, msg)
-            call f%append(pg//'/velocity/step', bs(1:nb), st, msg); call need(st, msg)
-            call f%append(pg//'/velocity/time', bt(1:nb), st, msg); call need(st, msg)
-            call f%append(pg//'/velocity/value', bv(:, :, 1:nb), st, msg); call need(st, msg)
-            call f%append(og//'/energy_coefficient/step', bs(1:nb), st, msg); call need(st, msg)
-            call f%append(og//'/energy_coefficient/time', bt(1:nb), st, msg); call need(st, msg)
-            call f%append(og//'/energy_coefficient/value', be(1:nb), st, msg)
-            call need(st, msg)
-            call f%append(og//'/precession_coefficient/step', bs(1:nb), st, msg)
-            call need(st, msg)
-            call f%append(og//'/precession_coefficient/time', bt(1:nb), st, msg)
-            call need(st, msg)
-            call f%append(og//'/precession_coefficient/value', bp(1:nb), st, msg)
-            call need(st, msg)
+            call f%append(pg//'/position/step', bs(1:nb))
+            call f%append(pg//'/position/time', bt(1:nb))
+            call f%append(pg//'/position/value', bq(:, :, 1:nb))
+            call f%append(pg//'/velocity/step', bs(1:nb))
+            call f%append(pg//'/velocity/time', bt(1:nb))
+            call f%append(pg//'/velocity/value', bv(:, :, 1:nb))
+            call f%append(og//'/energy_coefficient/step', bs(1:nb))
+            call f%append(og//'/energy_coefficient/time', bt(1:nb))
+            call f%append(og//'/energy_coefficient/value', be(1:nb))
+            call f%append(og//'/precession_coefficient/step', bs(1:nb))
+            call f%append(og//'/precession_coefficient/time', bt(1:nb))
+            call f%append(og//'/precession_coefficient/value', bp(1:nb))
             nb = 0
         end subroutine flush_slab
     end subroutine coefficient_run
@@ -335,9 +341,9 @@ contains
         character(len=160) :: line
         integer :: m, st
         character(len=256) :: msg
-        call f%create(cx%outdir//'/'//scene//'.h5', st, msg); call need(st, msg)
+        call f%create(cx%outdir//'/'//scene//'.h5')
         call file_header(cx, f, scene, cx%period / NPER)
-        call f%set_attr('parameters', 'methods', labels, st, msg); call need(st, msg)
+        call f%set_attr('parameters', 'methods', labels)
         do m = 1, size(labels)
             call new_stepper(cx, labels(m), s, 0.0_wp)
             call coefficient_run(cx, s, NPER, NPERIODS * NPER, res, f)
@@ -372,18 +378,18 @@ contains
         character(len=160) :: line
         eps = cx%period / NPER_POINTS
         t0 = 0.5_wp * cx%period - NSTEP * eps
-        call f%create(cx%outdir//'/'//scene//'.h5', st, msg); call need(st, msg)
+        call f%create(cx%outdir//'/'//scene//'.h5')
         call file_header(cx, f, scene, eps)
-        call f%set_attr('parameters', 'methods', labels, st, msg); call need(st, msg)
-        call f%set_attr('parameters', 't_start', t0, st, msg); call need(st, msg)
+        call f%set_attr('parameters', 'methods', labels)
+        call f%set_attr('parameters', 't_start', t0)
         ! the exact orbit from 3 steps before to 3 steps after the pericentre
         do j = 1, NEXACT
             te(j) = 0.5_wp * cx%period + 3.0_wp * eps * (2.0_wp * (j - 1) / (NEXACT - 1) - 1.0_wp)
             call kepler_exact(cx%q0, cx%v0, te(j), qe(:, 1, j), v(:, 1), st)
             call need(st, 'kepler_exact failed')
         end do
-        call f%write('exact/position/time', te, st, msg); call need(st, msg)
-        call f%write('exact/position/value', qe, st, msg); call need(st, msg)
+        call f%write('exact/position/time', te)
+        call f%write('exact/position/value', qe)
         call unit(f, 'exact/position/time', 'T'); call unit(f, 'exact/position/value', 'L')
         call tr%init(2, 1, 256, st, msg); call need(st, msg)
         do m = 1, size(labels)
@@ -399,23 +405,22 @@ contains
             end do
             safe = fsym_h5_safe_name(s%name())
             g = 'particles/'//safe
-            call f%write(g//'/position/step', steps, st, msg); call need(st, msg)
-            call f%write(g//'/position/time', ts, st, msg); call need(st, msg)
-            call f%write(g//'/position/value', qs, st, msg); call need(st, msg)
+            call f%write(g//'/position/step', steps)
+            call f%write(g//'/position/time', ts)
+            call f%write(g//'/position/value', qs)
             call unit(f, g//'/position/time', 'T'); call unit(f, g//'/position/value', 'L')
             call particle_group(f, g, s%name())
             call method_attrs(f, 'parameters/'//safe, s, eps)
             g = 'force_evaluations/'//safe
-            call f%write(g//'/step', tr%step(1:tr%count), st, msg); call need(st, msg)
-            call f%write(g//'/stage', tr%stage(1:tr%count), st, msg); call need(st, msg)
-            call f%write(g//'/kind', tr%kind(1:tr%count), st, msg); call need(st, msg)
-            call f%write(g//'/position', tr%q(:, :, 1:tr%count), st, msg); call need(st, msg)
+            call f%write(g//'/step', tr%step(1:tr%count))
+            call f%write(g//'/stage', tr%stage(1:tr%count))
+            call f%write(g//'/kind', tr%kind(1:tr%count))
+            call f%write(g//'/position', tr%q(:, :, 1:tr%count))
             call unit(f, g//'/position', 'L')
-            call f%set_attr(g, 'label', trim(s%name()), st, msg); call need(st, msg)
+            call f%set_attr(g, 'label', trim(s%name()))
             call f%set_attr(g, 'kind_codes', 'EVAL_FORCE=1 EVAL_GRADIENT=2 '// &
-                            'EVAL_EXTRAPOLATED=3', st, msg)
-            call need(st, msg)
-            call f%set_attr(g, 'dropped', int(tr%dropped), st, msg); call need(st, msg)
+                            'EVAL_EXTRAPOLATED=3')
+            call f%set_attr(g, 'dropped', int(tr%dropped))
             write (line, '(2x,a12,i4,a)') trim(labels(m)), tr%count, ' force points recorded'
             call study_say(trim(line))
             if (substeps .and. trim(labels(m)) == 'FR') call fr_substeps(cx, f, t0, eps, NSTEP)
@@ -447,9 +452,9 @@ contains
                 qs(:, :, 3 * (j - 1) + i + 1) = q
             end do
         end do
-        call f%write('substeps/FR/position/value', qs, st, msg); call need(st, msg)
+        call f%write('substeps/FR/position/value', qs)
         call unit(f, 'substeps/FR/position/value', 'L')
-        call f%set_attr('substeps/FR', 'fractions', a, st, msg); call need(st, msg)
+        call f%set_attr('substeps/FR', 'fractions', a)
     end subroutine fr_substeps
 
     ! ---------------------------------------------------------------- GFR5 coefficients
@@ -461,19 +466,19 @@ contains
         real(wp) :: al(NA), c(3, NA)
         integer :: j, st
         character(len=256) :: msg
-        call f%create(cx%outdir//'/acoef.h5', st, msg); call need(st, msg)
+        call f%create(cx%outdir//'/acoef.h5')
         do j = 1, NA
             al(j) = 2.0_wp * (j - 1) / (NA - 1)
             call fsym_gfr5_coefficients(al(j), c(1, j), c(2, j), c(3, j), st, msg)
             call need(st, msg)
         end do
         call file_header(cx, f, 'acoef', 0.0_wp)
-        call f%write('gfr5/alpha', al, st, msg); call need(st, msg)
-        call f%write('gfr5/a0', c(1, :), st, msg); call need(st, msg)
-        call f%write('gfr5/a1', c(2, :), st, msg); call need(st, msg)
-        call f%write('gfr5/a2', c(3, :), st, msg); call need(st, msg)
+        call f%write('gfr5/alpha', al)
+        call f%write('gfr5/a0', c(1, :))
+        call f%write('gfr5/a1', c(2, :))
+        call f%write('gfr5/a2', c(3, :))
         j = minloc(abs(c(1, :)), 1)
-        call f%set_attr('gfr5', 'alpha_least_negative_a0', al(j), st, msg); call need(st, msg)
+        call f%set_attr('gfr5', 'alpha_least_negative_a0', al(j))
         call f%close(st, msg); call need(st, msg)
         call study_say('  a0 least negative at alpha = '//num(al(j)))
         call study_say('  wrote '//cx%outdir//'/acoef.h5')
@@ -512,12 +517,12 @@ contains
         end do
         found = .false.; t1zero = 0.0_wp
         do j = 1, size(t1) - 1
-            if (sign(1.0_wp, p(j)) /= sign(1.0_wp, p(j + 1))) then
+            if (.not. fsym_same(sign(1.0_wp, p(j)), sign(1.0_wp, p(j + 1)))) then
                 lo = t1(j); hi = t1(j + 1); plo = p(j)
                 do it = 1, 60
                     mid = 0.5_wp * (lo + hi)
                     call m2_at(cx, mid, r)
-                    if (sign(1.0_wp, r%pend) == sign(1.0_wp, plo)) then
+                    if (fsym_same(sign(1.0_wp, r%pend), sign(1.0_wp, plo))) then
                         lo = mid; plo = r%pend
                     else
                         hi = mid
@@ -538,15 +543,15 @@ contains
         logical :: found
         integer :: st
         character(len=256) :: msg
-        call f%create(cx%outdir//'/scanm2.h5', st, msg); call need(st, msg)
+        call f%create(cx%outdir//'/scanm2.h5')
         call m2_scan(cx, t1, e, p, t1zero, found)
         call file_header(cx, f, 'scanm2', cx%period / NPER)
-        call f%write('scan/t1', t1, st, msg); call need(st, msg)
-        call f%write('scan/energy_max', e, st, msg); call need(st, msg)
-        call f%write('scan/precession_at_P', p, st, msg); call need(st, msg)
+        call f%write('scan/t1', t1)
+        call f%write('scan/energy_max', e)
+        call f%write('scan/precession_at_P', p)
         call unit(f, 'scan/energy_max', 'T-4'); call unit(f, 'scan/precession_at_P', 'rad T-4')
-        call f%set_attr('scan', 'zero_found', merge(1, 0, found), st, msg); call need(st, msg)
-        call f%set_attr('scan', 't1_zero', t1zero, st, msg); call need(st, msg)
+        call f%set_attr('scan', 'zero_found', merge(1, 0, found))
+        call f%set_attr('scan', 't1_zero', t1zero)
         call f%close(st, msg); call need(st, msg)
         if (found) then
             call study_say('  precession at t = P crosses zero at t1 = '//num(t1zero))
@@ -581,17 +586,15 @@ contains
         real(wp), allocatable :: al(:), e(:), p(:)
         integer :: st
         character(len=256) :: msg
-        call f%create(cx%outdir//'/scangfr5.h5', st, msg); call need(st, msg)
+        call f%create(cx%outdir//'/scangfr5.h5')
         call gfr5_scan(cx, al, e, p)
         call file_header(cx, f, 'scangfr5', cx%period / NPER)
-        call f%write('scan/alpha', al, st, msg); call need(st, msg)
-        call f%write('scan/energy_max', e, st, msg); call need(st, msg)
-        call f%write('scan/precession_at_P', p, st, msg); call need(st, msg)
+        call f%write('scan/alpha', al)
+        call f%write('scan/energy_max', e)
+        call f%write('scan/precession_at_P', p)
         call unit(f, 'scan/energy_max', 'T-4'); call unit(f, 'scan/precession_at_P', 'rad T-4')
-        call f%set_attr('scan', 'alpha_least_energy', al(minloc(e, 1)), st, msg)
-        call need(st, msg)
-        call f%set_attr('scan', 'alpha_least_precession', al(minloc(abs(p), 1)), st, msg)
-        call need(st, msg)
+        call f%set_attr('scan', 'alpha_least_energy', al(minloc(e, 1)))
+        call f%set_attr('scan', 'alpha_least_precession', al(minloc(abs(p), 1)))
         call f%close(st, msg); call need(st, msg)
         call study_say('  least energy error at alpha = '//num(al(minloc(e, 1)))// &
                        ', least |precession| at alpha = '//num(al(minloc(abs(p), 1))))
@@ -621,8 +624,9 @@ contains
         character(len=FSYM_NAME_LEN) :: label
         real(wp), allocatable :: t1(:), em(:), pm(:)
         real(wp) :: t1zero
-        real(wp) :: d(size(NLADDER), 5), curve(2, NPER), nfe(size(NLADDER))
+        real(wp) :: d(size(NLADDER), 5), nfe(size(NLADDER))
         real(wp) :: nge(size(NLADDER))
+        real(wp), allocatable :: curve(:, :)     ! on the heap: 2 x NPER values
         logical :: found
         type(h5_file_t) :: f
         type(summary_t) :: r
@@ -631,15 +635,16 @@ contains
         integer :: m, k, st
         character(len=256) :: msg
         character(len=:), allocatable :: g
-        call f%create(cx%outdir//'/results.h5', st, msg); call need(st, msg)
+        allocate (curve(2, NPER))
+        call f%create(cx%outdir//'/results.h5')
         call file_header(cx, f, 'results', cx%period / NPER)
         call m2_scan(cx, t1, em, pm, t1zero, found)
         if (.not. found) call study_die('results: no zero of the M2 precession on the grid')
         names = [fsym_method_names(), [character(len=FSYM_NAME_LEN) :: 'A7', 'A8', 'A7''', &
                  'A8''', 'GFR5(0)', 'M2(t1*)']]
-        call f%set_attr('parameters', 'methods', names, st, msg); call need(st, msg)
-        call f%set_attr('parameters', 'steps_per_period', NLADDER, st, msg); call need(st, msg)
-        call f%set_attr('parameters', 'm2_t1_zero', t1zero, st, msg); call need(st, msg)
+        call f%set_attr('parameters', 'methods', names)
+        call f%set_attr('parameters', 'steps_per_period', NLADDER)
+        call f%set_attr('parameters', 'm2_t1_zero', t1zero)
         do m = 1, size(names)
             label = names(m)
             do k = 1, size(NLADDER)
@@ -663,27 +668,25 @@ contains
                 nfe(k) = real(s%force_evaluations(), wp)
                 nge(k) = real(s%gradient_evaluations(), wp)
             end do
-            call f%write(g//'/steps_per_period', real(NLADDER, wp), st, msg); call need(st, msg)
-            call f%write(g//'/energy_max', d(:, 1), st, msg); call need(st, msg)
-            call f%write(g//'/energy_at_P', d(:, 2), st, msg); call need(st, msg)
-            call f%write(g//'/precession_at_P', d(:, 3), st, msg); call need(st, msg)
-            call f%write(g//'/energy_at_2P', d(:, 4), st, msg); call need(st, msg)
-            call f%write(g//'/precession_at_2P', d(:, 5), st, msg); call need(st, msg)
-            call f%write(g//'/force_evaluations', nfe, st, msg); call need(st, msg)
-            call f%write(g//'/gradient_evaluations', nge, st, msg); call need(st, msg)
-            call f%write(g//'/energy_curve', curve(1, :), st, msg); call need(st, msg)
-            call f%write(g//'/precession_curve', curve(2, :), st, msg); call need(st, msg)
+            call f%write(g//'/steps_per_period', real(NLADDER, wp))
+            call f%write(g//'/energy_max', d(:, 1))
+            call f%write(g//'/energy_at_P', d(:, 2))
+            call f%write(g//'/precession_at_P', d(:, 3))
+            call f%write(g//'/energy_at_2P', d(:, 4))
+            call f%write(g//'/precession_at_2P', d(:, 5))
+            call f%write(g//'/force_evaluations', nfe)
+            call f%write(g//'/gradient_evaluations', nge)
+            call f%write(g//'/energy_curve', curve(1, :))
+            call f%write(g//'/precession_curve', curve(2, :))
             call unit(f, g//'/energy_curve', 'T-4')
             call unit(f, g//'/precession_curve', 'rad T-4')
-            call f%set_attr(g//'/energy_curve', 'eps', cx%period / NPER, st, msg)
-            call need(st, msg)
-            call f%set_attr(g//'/precession_curve', 'eps', cx%period / NPER, st, msg)
-            call need(st, msg)
+            call f%set_attr(g//'/energy_curve', 'eps', cx%period / NPER)
+            call f%set_attr(g//'/precession_curve', 'eps', cx%period / NPER)
             call unit(f, g//'/energy_max', 'T-4'); call unit(f, g//'/energy_at_P', 'T-4')
             call unit(f, g//'/energy_at_2P', 'T-4')
             call unit(f, g//'/precession_at_P', 'rad T-4')
             call unit(f, g//'/precession_at_2P', 'rad T-4')
-            call f%set_attr(g, 'label', trim(label), st, msg); call need(st, msg)
+            call f%set_attr(g, 'label', trim(label))
         end do
         call f%close(st, msg); call need(st, msg)
         call study_say('  '//fsym_int_text(size(names))//' methods, M2 precession zero at t1 = '// &

@@ -17,7 +17,7 @@ module fsym_checkpoint_h5
                     h5eset_auto_f, H5F_ACC_TRUNC_F, H5F_ACC_RDONLY_F
     use h5lt, only: h5ltmake_dataset_double_f, h5ltread_dataset_double_f, &
                     h5ltget_dataset_info_f, h5ltfind_dataset_f
-    use fsym_kinds, only: wp
+    use fsym_kinds, only: wp, fsym_same
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_IO, FSYM_ERR_CHECKPOINT
     use fsym_checkpoint, only: fsym_crc32
     use fsym_h5, only: fsym_rename_file, fsym_temp_name, fsym_remove_file
@@ -110,13 +110,13 @@ contains
             want = check_of(integrator, progress, results)
             if (size(chk) /= NCHECK) then
                 why = 'check: dataset of the wrong length (not a checkpoint of this format)'
-            else if (chk(1) /= FILE_TAG .or. chk(2) /= FILE_VERSION) then
+            else if (.not. (fsym_same(chk(1), FILE_TAG) .and. fsym_same(chk(2), FILE_VERSION))) then
                 why = 'check: format tag or version differs (a foreign or newer file)'
-            else if (any(chk(3:5) /= want(3:5))) then
+            else if (.not. all(fsym_same(chk(3:5), want(3:5)))) then
                 why = 'check: dataset lengths differ from the recorded ones (truncated)'
             else
                 do k = 1, 3
-                    if (chk(5 + k) /= want(5 + k)) then
+                    if (.not. fsym_same(chk(5 + k), want(5 + k))) then
                         why = 'check: CRC-32 of dataset '//trim(NAMES(k))//' differs (corrupt)'
                         exit
                     end if

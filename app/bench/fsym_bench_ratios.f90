@@ -49,8 +49,8 @@ contains
             ' model in the user''s own module); both go through the one kernel.'// &
             ' `step/hand`: a loop of `integrator_t%step` against the hand loop.'// &
             ' `expert/hand` (on every line): the loop an expert writes without the library'// &
-            ' (`app/fsym_expertloops.f90`: the Kepler force written out, no model call, the'// &
-            ' kick coefficient folded into the force factor, f = -k/r^3 and v += f x, the'// &
+            ' (`app/bench/fsym_expertloops.f90`: the Kepler force written out, no model call,'// &
+            ' the kick coefficient folded into the force factor, f = -k/r^3 and v += f x, the'// &
             ' first-same-as-last factor kept per body) against the hand loop of the line: what'// &
             ' the separation of model and integrator costs. `floor ... keep/hand`: the hand'// &
             ' loop that also stores q and v at the start of each step (in the loop of its first'// &
@@ -59,7 +59,8 @@ contains
             ' particle-force (force and gradient evaluations each count one, as the library'// &
             ' counts them, for every contender: the expert''s folded gradient kick counts'// &
             ' two); `inlined`: the expert''s loop without the folding (a = s x, then v +='// &
-            ' k a, as the library computes; `inl2_*`, `inl3_*` in `app/fsym_handloops.f90`).'// &
+            ' k a, as the library computes; `inl2_*`, `inl3_*` in'// &
+            ' `app/bench/fsym_handloops.f90`).'// &
             ' `bitwise`: every contender but the expert ends in the same state (q and v);'// &
             ' `expert_dev`: the largest difference of the expert''s end state from the'// &
             ' library''s (built-in model), relative to the largest |q| (|v|), after one'// &

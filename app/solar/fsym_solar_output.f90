@@ -47,7 +47,8 @@ contains
         call fsym_h5md_header(f, 'fsym-solar', version, 'astronomical units: AU, days, '// &
                               'solar masses (G in AU^3 day^-2 per solar mass)', stat, errmsg)
         if (stat == FSYM_SUCCESS) call f%set_attr('/', 'description', 'outer solar system '// &
-            '(Hairer, Lubich, Wanner), units AU, days, solar masses; program app/fsym_solar.f90', &
+            '(Hairer, Lubich, Wanner), units AU, days, solar masses; program '// &
+            'app/solar/fsym_solar.f90', &
             stat, errmsg)
         if (stat == FSYM_SUCCESS) call f%set_attr('/', 't_end', res%t_end, stat, errmsg)
         if (stat == FSYM_SUCCESS) call f%set_attr('parameters', 'data_file', data_path, stat, &

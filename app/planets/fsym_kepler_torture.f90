@@ -1,7 +1,7 @@
 !> Random-draw torture of the Kepler drift (`fsym_kepler_drift`) against a real128
 !> reference: `fsym-kepler-torture [draws [seed [tolerance]]]` prints, per orbit class, the
 !> draws, failures, NaN results and the worst relative errors (energy, angular momentum,
-!> LRL vector, phase, velocity; see app/fsym_kepler_check.f90), and a last line
+!> LRL vector, phase, velocity; see app/planets/fsym_kepler_check.f90), and a last line
 !> `kepler-torture draws=N failures=F nan=K worst=W tol=T PASS|FAIL`; it exits with status 1
 !> when a draw fails, returns NaN, or an error exceeds the tolerance (default 1e-13;
 !> scripts/kepler_torture.sh passes 5e-11, see doc/planets.md).

@@ -25,10 +25,16 @@ module fsym_h5
     public :: fsym_h5_safe_name, fsym_open_text, fsym_commit_text, fsym_h5md_header
     public :: fsym_make_dir, fsym_exit_failure, fsym_remove_file
 
-    !> An HDF5 file being written (through a temporary name).
+    integer, parameter :: MSG_LEN = 512          ! length of a kept error message
+
+    !> An HDF5 file being written (through a temporary name). Every write takes optional
+    !> `stat`, `errmsg`: with them, the caller gets each write's status; without them, the
+    !> file keeps its first error (sticky error channel): later writes are no-ops, `close`
+    !> aborts and reports that error once. A program then checks one status, at `close`.
     type :: h5_file_t
         integer(hid_t) :: id = -1                !! HDF5 file identifier (-1: not open)
         logical :: failed = .false.              !! a write failed: close will abort
+        character(len=:), allocatable :: first_error  !! message of the first failed write
         character(len=:), allocatable :: path    !! final name
         character(len=:), allocatable :: tmp     !! temporary name while open
     contains
@@ -98,6 +104,21 @@ contains
             stat = FSYM_SUCCESS
         end if
     end function bad
+
+    !> The status of a write to the caller that asked for it; a failure is also kept by the
+    !> file (its first message), for `close` to report.
+    subroutine keep_error(self, st, msg, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self             !! the file
+        integer, intent(in) :: st                           !! the write's status
+        character(len=*), intent(in) :: msg                 !! its message
+        integer, intent(out), optional :: stat              !! the caller's status
+        character(len=*), intent(inout), optional :: errmsg !! the caller's message
+        if (present(stat)) stat = st
+        if (st == FSYM_SUCCESS) return
+        if (present(errmsg)) errmsg = msg
+        self%failed = .true.
+        if (.not. allocated(self%first_error)) self%first_error = trim(msg)
+    end subroutine keep_error
 
     !> End a program that failed: the message on standard error, both standard units flushed
     !> (a buffered standard error that is a file would otherwise lose it), then exit status 1
@@ -241,7 +262,25 @@ contains
     !> module with the unit system, and in `parameters` the unit system, compiler, compiler
     !> flags, the git commit (environment variable FSYM_GIT_COMMIT, set by the scripts) and
     !> the library version.
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine fsym_h5md_header(f, creator, version, unit_system, stat, errmsg)
+        class(h5_file_t), intent(inout) :: f        !! the file
+        character(len=*), intent(in) :: creator     !! program name
+        character(len=*), intent(in) :: version     !! library version
+        character(len=*), intent(in) :: unit_system !! the units, in words
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (f%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call fsym_h5md_header_do(f, creator, version, unit_system, st, msg)
+        call keep_error(f, st, msg, stat, errmsg)
+    end subroutine fsym_h5md_header
+
+    !> `fsym_h5md_header` with its status always returned (the work of `fsym_h5md_header`).
+    subroutine fsym_h5md_header_do(f, creator, version, unit_system, stat, errmsg)
         class(h5_file_t), intent(inout) :: f        !! the file
         character(len=*), intent(in) :: creator     !! program name
         character(len=*), intent(in) :: version     !! library version
@@ -272,11 +311,26 @@ contains
                                                   stat, errmsg)
         if (stat == FSYM_SUCCESS) call f%set_attr('parameters', 'library_version', version, &
                                                   stat, errmsg)
-    end subroutine fsym_h5md_header
+    end subroutine fsym_h5md_header_do
 
     !> Create the file under its temporary name (any earlier file at `path` stays until
     !> `close`).
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine h5_create(self, path, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self     !! the file
+        character(len=*), intent(in) :: path        !! final name
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        msg = ''
+        call h5_create_do(self, path, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine h5_create
+
+    !> `h5_create` with its status always returned (the work of `h5_create`).
+    subroutine h5_create_do(self, path, stat, errmsg)
         class(h5_file_t), intent(inout) :: self     !! the file
         character(len=*), intent(in) :: path        !! final name
         integer, intent(out) :: stat                !! status
@@ -287,10 +341,11 @@ contains
         self%path = trim(path)
         self%tmp = fsym_temp_name(path)
         self%failed = .false.
+        if (allocated(self%first_error)) deallocate (self%first_error)
         if (ierr == 0) call h5fcreate_f(self%tmp, H5F_ACC_TRUNC_F, self%id, ierr)
         if (ierr < 0) self%id = -1
         if (bad(self, ierr, 'creating '//self%path, stat, errmsg)) self%id = -1
-    end subroutine h5_create
+    end subroutine h5_create_do
 
     !> Close the file and rename it to its final name; after a failed write, abort instead
     !> (stat = FSYM_ERR_IO).
@@ -301,8 +356,13 @@ contains
         integer :: ierr
         if (self%failed .or. self%id < 0) then
             call self%abort()
-            call fsym_report(FSYM_ERR_IO, 'not written (an earlier write failed): '// &
-                             self%path, stat, errmsg)
+            if (allocated(self%first_error)) then   ! already a full message
+                stat = FSYM_ERR_IO
+                errmsg = self%first_error//' (not written: '//self%path//')'
+            else
+                call fsym_report(FSYM_ERR_IO, 'not written (an earlier write failed): '// &
+                                 self%path, stat, errmsg)
+            end if
             return
         end if
         call h5fclose_f(self%id, ierr)
@@ -332,7 +392,23 @@ contains
     end subroutine h5_final
 
     !> Create the group `path` and any missing parents (nothing when it exists).
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine h5_make_group(self, path, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self     !! the file
+        character(len=*), intent(in) :: path        !! group path
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (self%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call h5_make_group_do(self, path, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine h5_make_group
+
+    !> `h5_make_group` with its status always returned (the work of `h5_make_group`).
+    subroutine h5_make_group_do(self, path, stat, errmsg)
         class(h5_file_t), intent(inout) :: self     !! the file
         character(len=*), intent(in) :: path        !! group path
         integer, intent(out) :: stat                !! status
@@ -358,7 +434,7 @@ contains
             if (ierr == 0 .and. .not. there) call h5gclose_f(g, ierr)
             if (bad(self, ierr, 'group '//path, stat, errmsg)) return
         end do
-    end subroutine h5_make_group
+    end subroutine h5_make_group_do
 
     !> The parent group of `path` (created when missing).
     subroutine parent(self, path, stat, errmsg)
@@ -436,7 +512,24 @@ contains
     end subroutine append_raw
 
     !> Write a real 1D dataset.
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine w_r1(self, path, x, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self             !! the file
+        character(len=*), intent(in) :: path                !! dataset path
+        real(wp), intent(in), target, contiguous :: x(:)    !! data
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (self%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call w_r1_do(self, path, x, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine w_r1
+
+    !> `w_r1` with its status always returned (the work of `w_r1`).
+    subroutine w_r1_do(self, path, x, stat, errmsg)
         class(h5_file_t), intent(inout) :: self             !! the file
         character(len=*), intent(in) :: path                !! dataset path
         real(wp), intent(in), target, contiguous :: x(:)    !! data
@@ -444,10 +537,27 @@ contains
         character(len=*), intent(inout) :: errmsg           !! message on error
         call write_raw(self, path, h5kind_to_type(wp, H5_REAL_KIND), int(shape(x), hsize_t), &
                        c_loc(x), stat, errmsg)
-    end subroutine w_r1
+    end subroutine w_r1_do
 
     !> Write a real 2D dataset.
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine w_r2(self, path, x, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self                 !! the file
+        character(len=*), intent(in) :: path                    !! dataset path
+        real(wp), intent(in), target, contiguous :: x(:, :)     !! data
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (self%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call w_r2_do(self, path, x, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine w_r2
+
+    !> `w_r2` with its status always returned (the work of `w_r2`).
+    subroutine w_r2_do(self, path, x, stat, errmsg)
         class(h5_file_t), intent(inout) :: self                 !! the file
         character(len=*), intent(in) :: path                    !! dataset path
         real(wp), intent(in), target, contiguous :: x(:, :)     !! data
@@ -455,10 +565,27 @@ contains
         character(len=*), intent(inout) :: errmsg               !! message on error
         call write_raw(self, path, h5kind_to_type(wp, H5_REAL_KIND), int(shape(x), hsize_t), &
                        c_loc(x), stat, errmsg)
-    end subroutine w_r2
+    end subroutine w_r2_do
 
     !> Write a real 3D dataset.
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine w_r3(self, path, x, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self                 !! the file
+        character(len=*), intent(in) :: path                    !! dataset path
+        real(wp), intent(in), target, contiguous :: x(:, :, :)  !! data
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (self%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call w_r3_do(self, path, x, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine w_r3
+
+    !> `w_r3` with its status always returned (the work of `w_r3`).
+    subroutine w_r3_do(self, path, x, stat, errmsg)
         class(h5_file_t), intent(inout) :: self                 !! the file
         character(len=*), intent(in) :: path                    !! dataset path
         real(wp), intent(in), target, contiguous :: x(:, :, :)  !! data
@@ -466,10 +593,27 @@ contains
         character(len=*), intent(inout) :: errmsg               !! message on error
         call write_raw(self, path, h5kind_to_type(wp, H5_REAL_KIND), int(shape(x), hsize_t), &
                        c_loc(x), stat, errmsg)
-    end subroutine w_r3
+    end subroutine w_r3_do
 
     !> Write a default-integer 1D dataset.
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine w_i1(self, path, x, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self             !! the file
+        character(len=*), intent(in) :: path                !! dataset path
+        integer, intent(in), target, contiguous :: x(:)     !! data
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (self%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call w_i1_do(self, path, x, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine w_i1
+
+    !> `w_i1` with its status always returned (the work of `w_i1`).
+    subroutine w_i1_do(self, path, x, stat, errmsg)
         class(h5_file_t), intent(inout) :: self             !! the file
         character(len=*), intent(in) :: path                !! dataset path
         integer, intent(in), target, contiguous :: x(:)     !! data
@@ -477,10 +621,27 @@ contains
         character(len=*), intent(inout) :: errmsg           !! message on error
         call write_raw(self, path, h5kind_to_type(kind(x), H5_INTEGER_KIND), &
                        int(shape(x), hsize_t), c_loc(x), stat, errmsg)
-    end subroutine w_i1
+    end subroutine w_i1_do
 
     !> Write an integer(ik) 1D dataset.
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine w_ik1(self, path, x, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self             !! the file
+        character(len=*), intent(in) :: path                !! dataset path
+        integer(ik), intent(in), target, contiguous :: x(:) !! data
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (self%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call w_ik1_do(self, path, x, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine w_ik1
+
+    !> `w_ik1` with its status always returned (the work of `w_ik1`).
+    subroutine w_ik1_do(self, path, x, stat, errmsg)
         class(h5_file_t), intent(inout) :: self             !! the file
         character(len=*), intent(in) :: path                !! dataset path
         integer(ik), intent(in), target, contiguous :: x(:) !! data
@@ -488,10 +649,27 @@ contains
         character(len=*), intent(inout) :: errmsg           !! message on error
         call write_raw(self, path, h5kind_to_type(ik, H5_INTEGER_KIND), &
                        int(shape(x), hsize_t), c_loc(x), stat, errmsg)
-    end subroutine w_ik1
+    end subroutine w_ik1_do
 
     !> Append a real 1D slab.
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine a_r1(self, path, x, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self             !! the file
+        character(len=*), intent(in) :: path                !! dataset path
+        real(wp), intent(in), target, contiguous :: x(:)    !! slab
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (self%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call a_r1_do(self, path, x, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine a_r1
+
+    !> `a_r1` with its status always returned (the work of `a_r1`).
+    subroutine a_r1_do(self, path, x, stat, errmsg)
         class(h5_file_t), intent(inout) :: self             !! the file
         character(len=*), intent(in) :: path                !! dataset path
         real(wp), intent(in), target, contiguous :: x(:)    !! slab
@@ -499,10 +677,27 @@ contains
         character(len=*), intent(inout) :: errmsg           !! message on error
         call append_raw(self, path, h5kind_to_type(wp, H5_REAL_KIND), int(shape(x), hsize_t), &
                         c_loc(x), stat, errmsg)
-    end subroutine a_r1
+    end subroutine a_r1_do
 
     !> Append a real 3D slab (along the last dimension).
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine a_r3(self, path, x, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self                 !! the file
+        character(len=*), intent(in) :: path                    !! dataset path
+        real(wp), intent(in), target, contiguous :: x(:, :, :)  !! slab
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (self%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call a_r3_do(self, path, x, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine a_r3
+
+    !> `a_r3` with its status always returned (the work of `a_r3`).
+    subroutine a_r3_do(self, path, x, stat, errmsg)
         class(h5_file_t), intent(inout) :: self                 !! the file
         character(len=*), intent(in) :: path                    !! dataset path
         real(wp), intent(in), target, contiguous :: x(:, :, :)  !! slab
@@ -510,10 +705,27 @@ contains
         character(len=*), intent(inout) :: errmsg               !! message on error
         call append_raw(self, path, h5kind_to_type(wp, H5_REAL_KIND), int(shape(x), hsize_t), &
                         c_loc(x), stat, errmsg)
-    end subroutine a_r3
+    end subroutine a_r3_do
 
     !> Append an integer(ik) 1D slab.
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine a_ik1(self, path, x, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self             !! the file
+        character(len=*), intent(in) :: path                !! dataset path
+        integer(ik), intent(in), target, contiguous :: x(:) !! slab
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (self%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call a_ik1_do(self, path, x, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine a_ik1
+
+    !> `a_ik1` with its status always returned (the work of `a_ik1`).
+    subroutine a_ik1_do(self, path, x, stat, errmsg)
         class(h5_file_t), intent(inout) :: self             !! the file
         character(len=*), intent(in) :: path                !! dataset path
         integer(ik), intent(in), target, contiguous :: x(:) !! slab
@@ -521,7 +733,7 @@ contains
         character(len=*), intent(inout) :: errmsg           !! message on error
         call append_raw(self, path, h5kind_to_type(ik, H5_INTEGER_KIND), &
                         int(shape(x), hsize_t), c_loc(x), stat, errmsg)
-    end subroutine a_ik1
+    end subroutine a_ik1_do
 
     !> The object an attribute goes on must exist: a missing one is made a group.
     subroutine attr_target(self, path, stat, errmsg)
@@ -534,7 +746,25 @@ contains
     end subroutine attr_target
 
     !> Set a string attribute.
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine sa_s(self, path, name, x, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self     !! the file
+        character(len=*), intent(in) :: path        !! object path ('/' for the file)
+        character(len=*), intent(in) :: name        !! attribute name
+        character(len=*), intent(in) :: x           !! value
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (self%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call sa_s_do(self, path, name, x, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine sa_s
+
+    !> `sa_s` with its status always returned (the work of `sa_s`).
+    subroutine sa_s_do(self, path, name, x, stat, errmsg)
         class(h5_file_t), intent(inout) :: self     !! the file
         character(len=*), intent(in) :: path        !! object path ('/' for the file)
         character(len=*), intent(in) :: name        !! attribute name
@@ -546,7 +776,7 @@ contains
         if (stat /= FSYM_SUCCESS) return
         call h5ltset_attribute_string_f(self%id, path, name, x, ierr)
         if (bad(self, ierr, 'attribute '//name//' on '//path, stat, errmsg)) return
-    end subroutine sa_s
+    end subroutine sa_s_do
 
     !> Write an attribute through the low-level API: rank 0 (scalar) or 1 (`n` values).
     subroutine attr_raw(self, path, name, tid, rank, n, ptr, stat, errmsg)
@@ -579,7 +809,25 @@ contains
     end subroutine attr_raw
 
     !> Set a 1D string attribute (fixed length, the longest element's).
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine sa_s1(self, path, name, x, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self         !! the file
+        character(len=*), intent(in) :: path            !! object path ('/' for the file)
+        character(len=*), intent(in) :: name            !! attribute name
+        character(len=*), intent(in), target :: x(:)    !! values
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (self%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call sa_s1_do(self, path, name, x, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine sa_s1
+
+    !> `sa_s1` with its status always returned (the work of `sa_s1`).
+    subroutine sa_s1_do(self, path, name, x, stat, errmsg)
         class(h5_file_t), intent(inout) :: self         !! the file
         character(len=*), intent(in) :: path            !! object path ('/' for the file)
         character(len=*), intent(in) :: name            !! attribute name
@@ -593,10 +841,28 @@ contains
         if (bad(self, ierr, 'attribute '//name//' on '//path, stat, errmsg)) return
         call attr_raw(self, path, name, tid, 1, size(x), c_loc(x), stat, errmsg)
         call h5tclose_f(tid, e2)
-    end subroutine sa_s1
+    end subroutine sa_s1_do
 
     !> Set a real scalar attribute.
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine sa_r0(self, path, name, x, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self     !! the file
+        character(len=*), intent(in) :: path        !! object path ('/' for the file)
+        character(len=*), intent(in) :: name        !! attribute name
+        real(wp), intent(in), target :: x           !! value
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (self%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call sa_r0_do(self, path, name, x, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine sa_r0
+
+    !> `sa_r0` with its status always returned (the work of `sa_r0`).
+    subroutine sa_r0_do(self, path, name, x, stat, errmsg)
         class(h5_file_t), intent(inout) :: self     !! the file
         character(len=*), intent(in) :: path        !! object path ('/' for the file)
         character(len=*), intent(in) :: name        !! attribute name
@@ -605,10 +871,28 @@ contains
         character(len=*), intent(inout) :: errmsg   !! message on error
         call attr_raw(self, path, name, h5kind_to_type(wp, H5_REAL_KIND), 0, 1, c_loc(x), &
                       stat, errmsg)
-    end subroutine sa_r0
+    end subroutine sa_r0_do
 
     !> Set an integer scalar attribute.
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine sa_i0(self, path, name, x, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self     !! the file
+        character(len=*), intent(in) :: path        !! object path ('/' for the file)
+        character(len=*), intent(in) :: name        !! attribute name
+        integer, intent(in), target :: x            !! value
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (self%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call sa_i0_do(self, path, name, x, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine sa_i0
+
+    !> `sa_i0` with its status always returned (the work of `sa_i0`).
+    subroutine sa_i0_do(self, path, name, x, stat, errmsg)
         class(h5_file_t), intent(inout) :: self     !! the file
         character(len=*), intent(in) :: path        !! object path ('/' for the file)
         character(len=*), intent(in) :: name        !! attribute name
@@ -617,10 +901,28 @@ contains
         character(len=*), intent(inout) :: errmsg   !! message on error
         call attr_raw(self, path, name, h5kind_to_type(kind(x), H5_INTEGER_KIND), 0, 1, &
                       c_loc(x), stat, errmsg)
-    end subroutine sa_i0
+    end subroutine sa_i0_do
 
     !> Set a real 1D attribute.
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine sa_r1(self, path, name, x, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self     !! the file
+        character(len=*), intent(in) :: path        !! object path ('/' for the file)
+        character(len=*), intent(in) :: name        !! attribute name
+        real(wp), intent(in) :: x(:)                !! values
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (self%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call sa_r1_do(self, path, name, x, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine sa_r1
+
+    !> `sa_r1` with its status always returned (the work of `sa_r1`).
+    subroutine sa_r1_do(self, path, name, x, stat, errmsg)
         class(h5_file_t), intent(inout) :: self     !! the file
         character(len=*), intent(in) :: path        !! object path ('/' for the file)
         character(len=*), intent(in) :: name        !! attribute name
@@ -632,10 +934,28 @@ contains
         if (stat /= FSYM_SUCCESS) return
         call h5ltset_attribute_double_f(self%id, path, name, x, int(size(x), size_t), ierr)
         if (bad(self, ierr, 'attribute '//name//' on '//path, stat, errmsg)) return
-    end subroutine sa_r1
+    end subroutine sa_r1_do
 
     !> Set an integer 1D attribute.
+    !> Without `stat` an error is kept by the file: later writes are no-ops and `close`
+    !> reports the first error (the sticky error channel of `h5_file_t`).
     subroutine sa_i1(self, path, name, x, stat, errmsg)
+        class(h5_file_t), intent(inout) :: self     !! the file
+        character(len=*), intent(in) :: path        !! object path ('/' for the file)
+        character(len=*), intent(in) :: name        !! attribute name
+        integer, intent(in) :: x(:)                 !! values
+        integer, intent(out), optional :: stat              !! status (absent: kept by the file)
+        character(len=*), intent(inout), optional :: errmsg !! message on error
+        integer :: st
+        character(len=MSG_LEN) :: msg
+        if (self%failed .and. .not. present(stat)) return   ! sticky: no-op after a failure
+        msg = ''
+        call sa_i1_do(self, path, name, x, st, msg)
+        call keep_error(self, st, msg, stat, errmsg)
+    end subroutine sa_i1
+
+    !> `sa_i1` with its status always returned (the work of `sa_i1`).
+    subroutine sa_i1_do(self, path, name, x, stat, errmsg)
         class(h5_file_t), intent(inout) :: self     !! the file
         character(len=*), intent(in) :: path        !! object path ('/' for the file)
         character(len=*), intent(in) :: name        !! attribute name
@@ -647,6 +967,6 @@ contains
         if (stat /= FSYM_SUCCESS) return
         call h5ltset_attribute_int_f(self%id, path, name, x, int(size(x), size_t), ierr)
         if (bad(self, ierr, 'attribute '//name//' on '//path, stat, errmsg)) return
-    end subroutine sa_i1
+    end subroutine sa_i1_do
 
 end module fsym_h5
