@@ -257,8 +257,12 @@ contains
         form = kernel_form(self%sc)
         if (allocated(self%opi)) deallocate (self%opi, self%opo, self%ci, self%ui, self%co, &
                                              self%uo)
-        allocate (self%opi(MAXC), self%opo(MAXC), self%ci(MAXC), self%ui(MAXC), &
-                  self%co(MAXC), self%uo(MAXC), stat=ist)
+        allocate (self%opi(MAXC), stat=ist)
+        if (ist == 0) allocate (self%opo(MAXC), stat=ist)
+        if (ist == 0) allocate (self%ci(MAXC), stat=ist)
+        if (ist == 0) allocate (self%ui(MAXC), stat=ist)
+        if (ist == 0) allocate (self%co(MAXC), stat=ist)
+        if (ist == 0) allocate (self%uo(MAXC), stat=ist)
         if (ist /= 0) then
             call fsym_report(FSYM_ERR_NO_MEMORY, 'processed: no memory', stat, errmsg)
             return
@@ -293,8 +297,8 @@ contains
         call fsym_kernel_layout(self%opi(1:max(self%nin, 1)), .false., self%d, self%n, self%ksi)
         call fsym_kernel_layout(self%opo(1:max(self%nout, 1)), .false., self%d, self%n, &
                                 self%kso)
-        allocate (self%wi(self%d, self%n, fsym_kernel_slots(self%ksi)), &
-                  self%wo(self%d, self%n, fsym_kernel_slots(self%kso)), stat=ist)
+        allocate (self%wi(self%d, self%n, fsym_kernel_slots(self%ksi)), stat=ist)
+        if (ist == 0) allocate (self%wo(self%d, self%n, fsym_kernel_slots(self%kso)), stat=ist)
         if (ist /= 0) then
             call fsym_report(FSYM_ERR_NO_MEMORY, 'processed: no memory', stat, errmsg)
             return
