@@ -568,7 +568,8 @@ contains
     !> BM-mf, SRKN6b, and the Wisdom-Holman kernels WH, WHK-M, WHK-L. A prime may be written ',
     !> the Unicode prime, or `prime`; a parameter as a decimal number or a fraction p/q. Blanks
     !> are ignored; the rest may be at most `FSYM_LABEL_LEN` characters. On error `scheme` is
-    !> untouched and `stat` says why (`FSYM_ERR_UNKNOWN_METHOD`, `FSYM_ERR_BAD_PARAMETER`, `FSYM_ERR_NO_MEMORY`).
+    !> untouched and `stat` says why (`FSYM_ERR_UNKNOWN_METHOD`, `FSYM_ERR_BAD_PARAMETER`,
+    !> `FSYM_ERR_NO_MEMORY`).
     subroutine fsym_scheme_by_name(name, scheme, stat, errmsg)
         character(len=*), intent(in) :: name            !! method label
         type(scheme_t), intent(inout) :: scheme         !! result, set only on success
