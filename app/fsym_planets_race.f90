@@ -138,12 +138,21 @@ program fsym_planets_race
     end if
     ph_in = angle(xe(:, 1) - xe(:, 0), dat%qref(:, first_planet()) - dat%qref(:, isun))
     ph_out = angle(xe(:, n) - xe(:, 0), dat%qref(:, last_planet()) - dat%qref(:, isun))
-    write (output_unit, '(a,a,a,a,a,es24.17,a,es12.5,a,es12.5,a,es12.5,a,es14.7,a,f0.4,a,i0,a,'// &
-           'es14.7)') 'race system=', trim(system), ' method=', trim(method), ' h=', h, &
-        ' maxdE=', maxde, ' phase_in=', ph_in, ' phase_out=', ph_out, ' seconds=', secs, &
-        ' orbits=', real(nsteps, wp) * h / p_in, ' evals=', evals, ' cpu_seconds=', cpu1 - cpu0
+    write (output_unit, '(a)') 'race system='//trim(system)//' method='//trim(method)// &
+        ' h='//num(h)//' maxdE='//num(maxde)//' phase_in='//num(ph_in)//' phase_out='// &
+        num(ph_out)//' seconds='//num(secs)//' orbits='//num(real(nsteps, wp) * h / p_in)// &
+        ' evals='//num(real(evals, wp))//' cpu_seconds='//num(cpu1 - cpu0)
 
 contains
+
+    !> A real as text without blanks (17 significant digits).
+    function num(x) result(t)
+        real(wp), intent(in) :: x
+        character(len=:), allocatable :: t
+        character(len=32) :: buf
+        write (buf, '(es24.16e3)') x
+        t = trim(adjustl(buf))
+    end function num
 
     !> The angle between two vectors, atan2(|a x b|, a . b).
     real(wp) function angle(a, b)
