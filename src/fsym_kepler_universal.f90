@@ -46,6 +46,8 @@ module fsym_kepler_universal
     integer, parameter :: MAX_ITER = 400
     !> Series terms of c2 and c3 for |x| < 1 (the next term is below 1e-19).
     integer, parameter :: NSERIES = 9
+    !> Series terms for |x| < 0.1 (the next term is below 5e-20).
+    integer, parameter :: NSMALL = 5
     integer :: ks_
     !> Reciprocals 1/((2k+1)(2k+2)) and 1/((2k+2)(2k+3)) of the series' term ratios.
     real(wp), parameter :: RC2(NSERIES) = [(1.0_wp / real((2 * ks_ + 1) * (2 * ks_ + 2), wp), &
@@ -180,9 +182,11 @@ contains
                 lo = -TWO_PI / sqrt(beta); lo_open = .false.
             end if
         end if
-        ! starting guess: s = dt/r0 - eta dt^2/(2 r0^3), clipped into the bracket
+        ! starting guess: the series of s in dt to third order, s = x (1 - (x/(2 r0)) (eta -
+        ! x (eta^2/r0 - zeta/3))) with x = dt/r0, clipped into the bracket (one Laguerre
+        ! iteration fewer on planetary steps than the second-order guess)
         s = dt / r0
-        s = s - 0.5_wp * eta * s * s / r0
+        s = s * (1.0_wp - (0.5_wp * s / r0) * (eta - s * (eta * eta / r0 - zeta / 3.0_wp)))
         if (.not. (s > lo .and. s < hi) .or. .not. ieee_is_finite(s)) s = dt / r0
         if (.not. (s > lo .and. s < hi) .or. .not. ieee_is_finite(s)) then
             if (lo_open .or. hi_open) then
@@ -350,10 +354,11 @@ contains
         real(wp) :: y, t
         integer :: k
         if (abs(x) < 1.0_wp) then
-            ! c2 = sum (-x)^k/(2k+2)!, c3 = sum (-x)^k/(2k+3)!, by Horner from the last term
+            ! c2 = sum (-x)^k/(2k+2)!, c3 = sum (-x)^k/(2k+3)!, by Horner from the last term;
+            ! for |x| < 0.1 five terms suffice (the next is below 0.1^6/16! = 5e-20)
             c2 = 1.0_wp
             c3 = 1.0_wp
-            do k = NSERIES, 1, -1
+            do k = merge(NSMALL, NSERIES, abs(x) < 0.1_wp), 1, -1
                 c2 = 1.0_wp - (x * RC2(k)) * c2
                 c3 = 1.0_wp - (x * RC3(k)) * c3
             end do
