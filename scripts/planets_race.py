@@ -97,7 +97,7 @@ ROOT = os.path.dirname(HERE)
 DEFAULT_LIB_CMD = ('fpm run --profile release --flag "-std=f2008 -O2 -ffp-contract=off" '
                    'fsym-planets -- race state={state} system={system} method={method} h={h} '
                    'nsteps={nsteps} samples={samples}')
-DEFAULT_LIB_METHODS = "WH,WH+C17,WHK-M+C17,WHK-L+C17,C(T+V)"
+DEFAULT_LIB_METHODS = "WH,WH+C17,WHK-M+C17,WHK-L+C17,C,C(T+V)"
 LIB_KS = "7,10,14,20,28,40,56,80,112"
 
 # REBOUND contenders: label -> (settings, steps k = P_in / h). Settings as in REBOUND 5.2.2's own
