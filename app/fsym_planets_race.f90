@@ -5,7 +5,8 @@
 !>     race system=S method=M h=H maxdE=X phase_in=Y phase_out=Z seconds=T orbits=N evals=E
 !>          cpu_seconds=C
 !>
-!> Methods: the processed labels of `fsym_processed_lookup` (Jacobi coordinates: `WH`,
+!> Methods: the processed labels of `fsym_processed_lookup` (Jacobi coordinates with the
+!> Kepler masses M_k = eta_k, `PLANETS_KEPLER_ETA`: `WH`,
 !> `WH+C17`, `WHK-M+C17`, `WHK-L+C17`, `T2+C5`, any catalogue table such as `SRKN6b` with
 !> Kepler drifts), and `X(T+V)`: the catalogue table X on the kinetic + potential splitting
 !> of the Newtonian N-body model (barycentric). For a corrected method every sample is the
@@ -94,7 +95,8 @@ program fsym_planets_race
         xe = xb; ve = vb
         e0 = nb%energy(xe, ve)
     else
-        call jac%init(dat%m(isun), m, dat%g, PLANETS_JACOBI, st, msg)
+        call jac%init(dat%m(isun), m, dat%g, PLANETS_JACOBI, st, msg, &
+                      kepler_masses=PLANETS_KEPLER_ETA)
         if (st /= 0) call fail(msg)
         call jac%to_state(xb, vb, q, v, xcm, vcm)
         call pm%init(trim(method), jac, q, v, h, st, msg)
