@@ -162,7 +162,7 @@ contains
         real(wp), intent(out) :: s, g1, g2, g3, r
         integer, intent(out) :: stat
         real(wp), parameter :: LN = 5.0_wp
-        real(wp) :: lo, hi, f, fp, fpp, g0, sn, den, disc, zeta
+        real(wp) :: lo, hi, f, fp, fpp, g0, sn, den, disc, zeta, d, t1
         logical :: lo_open, hi_open
         integer :: it
         stat = FSYM_SUCCESS
@@ -177,9 +177,9 @@ contains
         end if
         if (beta > 0.0_wp .and. period < huge(1.0_wp)) then
             if (dt > 0.0_wp) then
-                hi = TWO_PI / sqrt(beta); hi_open = .false.
+                hi = period * beta / gm; hi_open = .false.   ! 2 pi / sqrt(beta)
             else
-                lo = -TWO_PI / sqrt(beta); lo_open = .false.
+                lo = -period * beta / gm; lo_open = .false.
             end if
         end if
         ! starting guess: the series of s in dt to third order, s = x (1 - (x/(2 r0)) (eta -
@@ -232,8 +232,21 @@ contains
             ! Laguerre converges cubically: a correction below 1e-6 |s| leaves an error of
             ! order 1e-18 |s| in sn, so sn is taken without another iteration
             if (abs(sn - s) <= 1.0e-6_wp * abs(sn)) then
+                d = sn - s
                 s = sn
-                call g_functions(beta, s, g0, g1, g2, g3)
+                if (d * d * abs(beta) <= 1.0e-10_wp) then
+                    ! G_k at the new s from those at the old one by Taylor's series to d^3
+                    ! (G0' = -beta G1, G_k' = G_(k-1)): with |d| sqrt|beta| <= 1e-5 the rest
+                    ! is below (1e-5)^4/24 of
+                    ! them, and a Stumpff evaluation is saved
+                    g3 = g3 + d * (g2 + d * (0.5_wp * g1 + d * g0 / 6.0_wp))
+                    g2 = g2 + d * (g1 + d * (0.5_wp * g0 - d * beta * g1 / 6.0_wp))
+                    t1 = g1
+                    g1 = g1 + d * (g0 - d * beta * (0.5_wp * t1 + d * g0 / 6.0_wp))
+                    g0 = g0 - d * beta * (t1 + d * (0.5_wp * g0 - d * beta * t1 / 6.0_wp))
+                else
+                    call g_functions(beta, s, g0, g1, g2, g3)
+                end if
                 r = r0 * g0 + eta * g1 + gm * g2
                 if (.not. (r > 0.0_wp .and. ieee_is_finite(r))) stat = FSYM_ERR_NO_CONVERGENCE
                 return

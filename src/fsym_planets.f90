@@ -381,7 +381,7 @@ contains
         real(wp), intent(in), contiguous :: q(:, :)     !! positions (3, n)
         real(wp), intent(out), contiguous :: a(:, :)    !! accelerations (3, n)
         integer, intent(inout) :: stat                  !! 0 on entry; non-zero = failure
-        real(wp) :: z(3)
+        real(wp) :: z(3), r2
         integer :: i0, k
         z = 0.0_wp
         if (self%coords == PLANETS_JACOBI) then
@@ -411,7 +411,8 @@ contains
         if (self%coords == PLANETS_JACOBI) then
             call planets_bary_to_jacobi(self%n, self%m, self%eta, self%ax, a, z)
             do k = 1, self%n
-                a(:, k) = a(:, k) + (self%gmk(k) / norm2(q(:, k))**3) * q(:, k)
+                r2 = q(1, k)**2 + q(2, k)**2 + q(3, k)**2
+                a(:, k) = a(:, k) + (self%gmk(k) / (r2 * sqrt(r2))) * q(:, k)
             end do
         else
             a = self%ax(:, 1:self%n)
