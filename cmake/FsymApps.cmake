@@ -27,10 +27,11 @@ set(FSYM_APP_SOLAR_MODULES solar/fsym_solar_data.f90)
 set(FSYM_APP_SOLAR_H5_MODULES solar/fsym_solar_output.f90)
 set(FSYM_APP_SOLAR_PROGRAMS solar/fsym_solar.f90)
 
-# planets: the planets benchmark and fit, the Kepler drift check and its torture
+# planets: the planets benchmark, the race program (fsym-planets) and fit, the Kepler drift check and its torture
 set(FSYM_APP_PLANETS_MODULES planets/fsym_planets_fit.f90 planets/fsym_kepler_check.f90)
 set(FSYM_APP_PLANETS_H5_MODULES)
-set(FSYM_APP_PLANETS_PROGRAMS planets/fsym_planets_bench.f90 planets/fsym_kepler_torture.f90)
+set(FSYM_APP_PLANETS_PROGRAMS planets/fsym_planets_bench.f90 planets/fsym_planets_race.f90
+    planets/fsym_kepler_torture.f90)
 
 # io: HDF5/H5MD output and the HDF5 checkpoint files
 set(FSYM_APP_IO_MODULES)

@@ -97,7 +97,7 @@ ROOT = os.path.dirname(HERE)
 DEFAULT_LIB_CMD = ('bash scripts/apps.sh fsym-planets --profile release '
                    '--flag "-std=f2008 -O2 -ffp-contract=off" -- race state={state} '
                    'system={system} method={method} h={h} nsteps={nsteps} samples={samples}')
-DEFAULT_LIB_METHODS = "WH,WHC17,C(T+V)"
+DEFAULT_LIB_METHODS = "WH,WH+C17,WHK-M+C17,WHK-L+C17,C,C(T+V)"
 LIB_KS = "7,10,14,20,28,40,56,80,112"
 
 # REBOUND contenders: label -> (settings, steps k = P_in / h). Settings as in REBOUND 5.2.2's own
@@ -421,12 +421,14 @@ def library_run(template, sysd, method, k, samples, state_path, timeout):
                   nsteps=sysd.nsteps(k), samples=samples, tend=repr(sysd.span),
                   orbits=sysd.orbits)
     argv = [tok.format(**fields) for tok in shlex.split(template)]
+    # the clock starts before the process does: on a loaded machine the child may run for a
+    # while before Popen returns to this process
+    t0 = time.perf_counter()
     try:
         proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                 text=True, cwd=ROOT)
     except OSError as exc:
         return None, f"cannot start {argv[0]!r}: {exc}"
-    t0 = time.perf_counter()
     while True:
         try:
             out, err = proc.communicate(timeout=HEARTBEAT)

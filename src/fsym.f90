@@ -15,6 +15,7 @@ module fsym
     use fsym_nbody
     use fsym_kepler_universal
     use fsym_planets
+    use fsym_processed
     use fsym_trace
     use fsym_analysis
     use fsym_checks

@@ -46,6 +46,8 @@ module fsym_kepler_universal
     integer, parameter :: MAX_ITER = 400
     !> Series terms of c2 and c3 for |x| < 1 (the next term is below 1e-19).
     integer, parameter :: NSERIES = 9
+    !> Series terms for |x| < 0.1 (the next term is below 5e-20).
+    integer, parameter :: NSMALL = 5
     integer :: ks_
     !> Reciprocals 1/((2k+1)(2k+2)) and 1/((2k+2)(2k+3)) of the series' term ratios.
     real(wp), parameter :: RC2(NSERIES) = [(1.0_wp / real((2 * ks_ + 1) * (2 * ks_ + 2), wp), &
@@ -160,7 +162,7 @@ contains
         real(wp), intent(out) :: s, g1, g2, g3, r
         integer, intent(out) :: stat
         real(wp), parameter :: LN = 5.0_wp
-        real(wp) :: lo, hi, f, fp, fpp, g0, sn, den, disc, zeta
+        real(wp) :: lo, hi, f, fp, fpp, g0, sn, den, disc, zeta, d, t1
         logical :: lo_open, hi_open
         integer :: it
         stat = FSYM_SUCCESS
@@ -175,14 +177,16 @@ contains
         end if
         if (beta > 0.0_wp .and. period < huge(1.0_wp)) then
             if (dt > 0.0_wp) then
-                hi = TWO_PI / sqrt(beta); hi_open = .false.
+                hi = period * beta / gm; hi_open = .false.   ! 2 pi / sqrt(beta)
             else
-                lo = -TWO_PI / sqrt(beta); lo_open = .false.
+                lo = -period * beta / gm; lo_open = .false.
             end if
         end if
-        ! starting guess: s = dt/r0 - eta dt^2/(2 r0^3), clipped into the bracket
+        ! starting guess: the series of s in dt to third order, s = x (1 - (x/(2 r0)) (eta -
+        ! x (eta^2/r0 - zeta/3))) with x = dt/r0, clipped into the bracket (one Laguerre
+        ! iteration fewer on planetary steps than the second-order guess)
         s = dt / r0
-        s = s - 0.5_wp * eta * s * s / r0
+        s = s * (1.0_wp - (0.5_wp * s / r0) * (eta - s * (eta * eta / r0 - zeta / 3.0_wp)))
         if (.not. (s > lo .and. s < hi) .or. .not. ieee_is_finite(s)) s = dt / r0
         if (.not. (s > lo .and. s < hi) .or. .not. ieee_is_finite(s)) then
             if (lo_open .or. hi_open) then
@@ -228,8 +232,21 @@ contains
             ! Laguerre converges cubically: a correction below 1e-6 |s| leaves an error of
             ! order 1e-18 |s| in sn, so sn is taken without another iteration
             if (abs(sn - s) <= 1.0e-6_wp * abs(sn)) then
+                d = sn - s
                 s = sn
-                call g_functions(beta, s, g0, g1, g2, g3)
+                if (d * d * abs(beta) <= 1.0e-10_wp) then
+                    ! G_k at the new s from those at the old one by Taylor's series to d^3
+                    ! (G0' = -beta G1, G_k' = G_(k-1)): with |d| sqrt|beta| <= 1e-5 the rest
+                    ! is below (1e-5)^4/24 of
+                    ! them, and a Stumpff evaluation is saved
+                    g3 = g3 + d * (g2 + d * (0.5_wp * g1 + d * g0 / 6.0_wp))
+                    g2 = g2 + d * (g1 + d * (0.5_wp * g0 - d * beta * g1 / 6.0_wp))
+                    t1 = g1
+                    g1 = g1 + d * (g0 - d * beta * (0.5_wp * t1 + d * g0 / 6.0_wp))
+                    g0 = g0 - d * beta * (t1 + d * (0.5_wp * g0 - d * beta * t1 / 6.0_wp))
+                else
+                    call g_functions(beta, s, g0, g1, g2, g3)
+                end if
                 r = r0 * g0 + eta * g1 + gm * g2
                 if (.not. (r > 0.0_wp .and. ieee_is_finite(r))) stat = FSYM_ERR_NO_CONVERGENCE
                 return
@@ -350,10 +367,11 @@ contains
         real(wp) :: y, t
         integer :: k
         if (abs(x) < 1.0_wp) then
-            ! c2 = sum (-x)^k/(2k+2)!, c3 = sum (-x)^k/(2k+3)!, by Horner from the last term
+            ! c2 = sum (-x)^k/(2k+2)!, c3 = sum (-x)^k/(2k+3)!, by Horner from the last term;
+            ! for |x| < 0.1 five terms suffice (the next is below 0.1^6/16! = 5e-20)
             c2 = 1.0_wp
             c3 = 1.0_wp
-            do k = NSERIES, 1, -1
+            do k = merge(NSMALL, NSERIES, abs(x) < 0.1_wp), 1, -1
                 c2 = 1.0_wp - (x * RC2(k)) * c2
                 c3 = 1.0_wp - (x * RC3(k)) * c3
             end do

@@ -39,8 +39,8 @@ module fsym_paper_schemes
     use fsym_kinds, only: wp
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_UNKNOWN_METHOD, FSYM_ERR_BAD_PARAMETER, &
                            FSYM_ERR_NO_MEMORY, fsym_report, fsym_pass
-    use fsym_scheme, only: scheme_t, OP_DRIFT, OP_KICK, OP_GRAD_KICK, fsym_scheme_custom, &
-                           fsym_scheme_extrapolate, fsym_scheme_take
+    use fsym_scheme, only: scheme_t, OP_DRIFT, OP_KICK, OP_GRAD_KICK, OP_EXTRAP_KICK, &
+                           fsym_scheme_custom, fsym_scheme_extrapolate, fsym_scheme_take
     implicit none
     private
 
@@ -515,6 +515,43 @@ contains
         s(k + 1:) = ''
     end subroutine strip_zeros
 
+    !> The second-order kernels of the Wisdom-Holman splitting, in kick-drift-kick form (one
+    !> Kepler drift per step; the force at the step's end is reused by the next step):
+    !>
+    !> * `WH`: kick 1/2, drift 1, kick 1/2 (the Wisdom-Holman map).
+    !> * `WHK-M`, the modified-kick kernel: each half kick adds the gradient term,
+    !>   v <- v + (h/2) a + (h^3/48) g with g = 2 (Da) a (the library's gradient), so that a
+    !>   whole step kicks by h a + (h^3/12) (Da) a: the kick of J. Wisdom, M. Holman and
+    !>   J. Touma, *Symplectic correctors*, Fields Inst. Commun. 10 (1996) 217, that removes
+    !>   the eps^2 h^2 error term ([V,[T,V]]/12 of the drift-kick-drift leapfrog); the same
+    !>   prefactor h^2/12 on (Da) a as in H. Rein, D. Tamayo and G. Brown, MNRAS 489 (2019)
+    !>   4632 (WHCKM).
+    !> * `WHK-L`, the lazy implementer's kernel: the same term by extrapolation (the paper's
+    !>   A' idea), v <- v + (h/2) a(q + (h^2/12) a(q)): two forces per step, no gradient
+    !>   (Wisdom, Holman & Touma 1996; WHCKL of Rein, Tamayo & Brown 2019). `WHK-M'` is it.
+    !>
+    !> Kick-drift-kick is conjugate to the drift-kick-drift kernels of those papers by
+    !> S = (half kick) o (half drift): the correctors of `fsym_processed` include S.
+    subroutine build_wh_kernel(key, s, st)
+        character(len=*), intent(in) :: key
+        type(scheme_t), intent(inout) :: s
+        integer, intent(out) :: st
+        character(len=256) :: msg
+        msg = ''
+        select case (key)
+        case ('whk-m')
+            call fsym_scheme_custom('WHK-M', [OP_GRAD_KICK, OP_DRIFT, OP_GRAD_KICK], &
+                                    [0.5_wp, 1.0_wp, 0.5_wp], &
+                                    [1.0_wp / 48.0_wp, 0.0_wp, 1.0_wp / 48.0_wp], 2, s, st, msg)
+        case ('whk-l')
+            call fsym_scheme_custom('WHK-L', [OP_EXTRAP_KICK, OP_DRIFT, OP_EXTRAP_KICK], &
+                                    [0.5_wp, 1.0_wp, 0.5_wp], &
+                                    [1.0_wp / 12.0_wp, 0.0_wp, 1.0_wp / 12.0_wp], 2, s, st, msg)
+        case default
+            call alternating_custom('WH', 2, OP_KICK, [0.5_wp, 0.5_wp], [1.0_wp], s, st, msg)
+        end select
+    end subroutine build_wh_kernel
+
     ! ---------------------------------------------------------------- names
 
     !> The named methods of the paper, each reachable through `fsym_scheme_by_name`.
@@ -528,10 +565,11 @@ contains
 
     !> Build a scheme from its label, case-insensitive: T2, FR, A, A', C, C', AN and AN'
     !> (3 <= N <= `FSYM_AN_MAX`), M1 (McLachlan's member), M1(t1), M2(t1), GFR5(alpha), BM,
-    !> BM-mf, SRKN6b. A prime may be written ', the Unicode prime, or `prime`; a parameter as
-    !> a decimal number or a fraction p/q. Blanks are ignored; the rest may be at most
-    !> `FSYM_LABEL_LEN` characters. On error `scheme` is untouched and `stat` says why
-    !> (`FSYM_ERR_UNKNOWN_METHOD`, `FSYM_ERR_BAD_PARAMETER`, `FSYM_ERR_NO_MEMORY`).
+    !> BM-mf, SRKN6b, and the Wisdom-Holman kernels WH, WHK-M, WHK-L. A prime may be written ',
+    !> the Unicode prime, or `prime`; a parameter as a decimal number or a fraction p/q. Blanks
+    !> are ignored; the rest may be at most `FSYM_LABEL_LEN` characters. On error `scheme` is
+    !> untouched and `stat` says why (`FSYM_ERR_UNKNOWN_METHOD`, `FSYM_ERR_BAD_PARAMETER`,
+    !> `FSYM_ERR_NO_MEMORY`).
     subroutine fsym_scheme_by_name(name, scheme, stat, errmsg)
         character(len=*), intent(in) :: name            !! method label
         type(scheme_t), intent(inout) :: scheme         !! result, set only on success
@@ -588,6 +626,7 @@ contains
         case ('bm'); call build_bm('BM', OP_DRIFT, s, st)
         case ('bm-mf'); call build_bm('BM-mf', OP_KICK, s, st)
         case ('srkn6b'); call build_srkn6b(s, st)
+        case ('wh', 'whk-m', 'whk-l'); call build_wh_kernel(key(1:nb), s, st)
         case ('m1')
             if (has_arg) then
                 call fsym_scheme_m1(x, s, st, msg, name=trim(member))
@@ -629,8 +668,8 @@ contains
             else
                 call fsym_report(FSYM_ERR_UNKNOWN_METHOD, '"'//trim(shown)// &
                                  '" (known: T2 FR A A'' C C'' AN AN'' M1 M1(t1) M2(t1)'// &
-                                 ' GFR5(alpha)'// &
-                                 ' BM BM-mf SRKN6b; RKN is not a splitting)', stat, errmsg)
+                                 ' GFR5(alpha) BM BM-mf SRKN6b WH WHK-M WHK-L;'// &
+                                 ' RKN is not a splitting)', stat, errmsg)
                 return
             end if
         end select

@@ -10,8 +10,12 @@
 !> * `PLANETS_JACOBI`: Jacobi positions q'_k = x_k - X_{k-1} (X_k the centre of mass of the
 !>   centre and bodies 1..k, eta_k their mass) and velocities v'_k. H_Kepler = sum_k
 !>   [m'_k |v'_k|^2/2 - G m'_k M_k / |q'_k|] with kinetic masses m'_k = m_k eta_{k-1}/eta_k
-!>   and M_k = m0 eta_k/eta_{k-1}; H_interaction = V(x) + sum_k G m'_k M_k / |q'_k| (V the
-!>   full Newtonian potential) depends on positions only, so there is no other term.
+!>   and M_k = m0 eta_k/eta_{k-1} (J. Wisdom and M. Holman, AJ 102 (1991) 1528), or with
+!>   `kepler_masses = PLANETS_KEPLER_ETA` M_k = eta_k (the interior mass including body k,
+!>   REBOUND's WHFast choice; measured on the outer solar system with correctors: 1.3x
+!>   smaller energy errors, doc/planets.md); H_interaction = V(x) + sum_k G m'_k M_k /
+!>   |q'_k| (V the full Newtonian potential) depends on positions only, so there is no
+!>   other term, for either choice.
 !> * `PLANETS_DEMOCRATIC`: heliocentric positions Q_i = x_i - x_0 and barycentric velocities
 !>   (Duncan, Levison & Lee 1998). H_Kepler = sum_i [m_i |V_i|^2/2 - G m0 m_i/|Q_i|],
 !>   H_interaction = -sum_{i<j} G m_i m_j/|Q_i - Q_j|, and the jump term H_jump = |sum_i m_i
@@ -55,6 +59,10 @@ module fsym_planets
     integer, parameter, public :: PLANETS_ENCOUNTER = 1001
     !> Model status of a drift whose Kepler solve failed (the model keeps the body).
     integer, parameter, public :: PLANETS_KEPLER_FAILED = 1002
+    !> Jacobi Kepler masses M_k = m0 eta_k/eta_{k-1} (Wisdom & Holman 1991; the default).
+    integer, parameter, public :: PLANETS_KEPLER_WH = 1
+    !> Jacobi Kepler masses M_k = eta_k (as REBOUND's WHFast).
+    integer, parameter, public :: PLANETS_KEPLER_ETA = 2
 
     !> A central body and n bodies (nm massive, then n - nm test particles) under the
     !> Wisdom-Holman splitting.
@@ -102,7 +110,7 @@ contains
 
     !> Set the system: central mass, masses of the n bodies (the first nm > 0, the rest 0:
     !> test particles), G, coordinates and the encounter radius.
-    subroutine planets_init(self, m0, m, g, coords, stat, errmsg, hill)
+    subroutine planets_init(self, m0, m, g, coords, stat, errmsg, hill, kepler_masses)
         class(planets_model_t), intent(inout) :: self   !! the model
         real(wp), intent(in) :: m0                      !! central mass (> 0)
         real(wp), intent(in) :: m(:)                    !! masses of the bodies (>= 0)
@@ -111,7 +119,9 @@ contains
         integer, intent(out), optional :: stat          !! status
         character(len=*), intent(inout), optional :: errmsg  !! message on error
         real(wp), intent(in), optional :: hill          !! encounter radius (Hill radii)
-        integer :: n, k
+        integer, intent(in), optional :: kepler_masses
+            !! Jacobi only: PLANETS_KEPLER_WH (default) or PLANETS_KEPLER_ETA
+        integer :: n, k, km
         n = size(m)
         if (.not. (m0 > 0.0_wp .and. g > 0.0_wp .and. m0 <= huge(m0) .and. g <= huge(g)) &
             .or. .not. all(m >= 0.0_wp .and. m <= huge(m0)) .or. n < 1) then
@@ -121,6 +131,13 @@ contains
         end if
         if (coords /= PLANETS_JACOBI .and. coords /= PLANETS_DEMOCRATIC) then
             call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'planets: unknown coordinate set', &
+                             stat, errmsg)
+            return
+        end if
+        km = PLANETS_KEPLER_WH
+        if (present(kepler_masses)) km = kepler_masses
+        if (km /= PLANETS_KEPLER_WH .and. km /= PLANETS_KEPLER_ETA) then
+            call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'planets: unknown Kepler mass choice', &
                              stat, errmsg)
             return
         end if
@@ -150,7 +167,11 @@ contains
         if (coords == PLANETS_JACOBI) then
             do k = 1, n
                 self%mkin(k) = m(k) * self%eta(k - 1) / self%eta(k)
-                self%gmk(k) = g * m0 * self%eta(k) / self%eta(k - 1)
+                if (km == PLANETS_KEPLER_ETA) then
+                    self%gmk(k) = g * self%eta(k)
+                else
+                    self%gmk(k) = g * m0 * self%eta(k) / self%eta(k - 1)
+                end if
             end do
         else
             self%mkin = m
@@ -368,7 +389,7 @@ contains
         real(wp), intent(in), contiguous :: q(:, :)     !! positions (3, n)
         real(wp), intent(out), contiguous :: a(:, :)    !! accelerations (3, n)
         integer, intent(inout) :: stat                  !! 0 on entry; non-zero = failure
-        real(wp) :: z(3)
+        real(wp) :: z(3), r2
         integer :: i0, k
         self%failed = 0
         z = 0.0_wp
@@ -399,7 +420,8 @@ contains
         if (self%coords == PLANETS_JACOBI) then
             call planets_bary_to_jacobi(self%n, self%m, self%eta, self%ax, a, z)
             do k = 1, self%n
-                a(:, k) = a(:, k) + (self%gmk(k) / norm2(q(:, k))**3) * q(:, k)
+                r2 = q(1, k)**2 + q(2, k)**2 + q(3, k)**2
+                a(:, k) = a(:, k) + (self%gmk(k) / (r2 * sqrt(r2))) * q(:, k)
             end do
         else
             a = self%ax(:, 1:self%n)

@@ -3,6 +3,8 @@
 !> method of the catalogue run with Kepler drifts (the Wisdom-Holman splitting, Jacobi
 !> coordinates; `[dh]`: democratic heliocentric) and the best kinetic + potential method
 !> (Chin's C on the Newtonian N-body model, `C(T+V)`). One line per method:
+!> Then the processed methods of `fsym_processed` (WH, WHK-M, WHK-L kernels with correctors, e.g.
+!> `WHK-L+C17`), maxdE from the corrected output after every step, in the same line form.
 !>
 !>     planets METHOD h=P/40 maxdE=X evals=E ns_per_step=T
 !>
@@ -173,8 +175,64 @@ program fsym_planets_bench
     end do
     write (output_unit, '(a,f0.2)') '# largest spread of the timings (max/min over '// &
         'repetitions): ', maxval(worst / best)
+    call processed_lines()
 
 contains
+
+    !> The processed methods (fsym_processed, Jacobi): the kick-drift-kick kernels WH, WHK-M,
+    !> WHK-L with and without the corrector of order 17; maxdE of the corrected output after
+    !> every step (output on a copy), the timing of the bare runs (output does not change
+    !> them), contenders in turn.
+    subroutine processed_lines()
+        integer, parameter :: np = 6
+        character(len=12), parameter :: pl(np) = [character(len=12) :: 'WH', 'WH+C3', &
+            'WH+C17', 'WHK-M+C17', 'WHK-L+C17', 'T2+C17']
+        type(processed_t) :: pm(np)
+        type(planets_model_t) :: je
+        real(wp) :: pbest(np), pworst(np), pmax(np), qo(3, n), vo(3, n)
+        integer :: ip
+        ! Jacobi with the Kepler masses eta_k (as the race); the Jacobi arrays are the same
+        call je%init(dat%m(isun), m, dat%g, PLANETS_JACOBI, st, msg, &
+                     kepler_masses=PLANETS_KEPLER_ETA)
+        if (st /= 0) call fail(msg)
+        do ip = 1, np
+            call pm(ip)%init(trim(pl(ip)), je, q0j, v0j, h, st, msg)
+            if (st /= 0) call fail(msg)
+            call pm(ip)%output(je, qo, vo, st, msg)
+            e0 = je%energy(qo, vo)
+            pmax(ip) = 0.0_wp
+            do k = 1, nsteps
+                call pm(ip)%run(je, 1_int64, st, msg)
+                if (st /= 0) call fail(msg)
+                call pm(ip)%output(je, qo, vo, st, msg)
+                if (st /= 0) call fail(msg)
+                pmax(ip) = max(pmax(ip), abs((je%energy(qo, vo) - e0) / e0))
+            end do
+        end do
+        pbest = huge(1.0_wp); pworst = 0.0_wp
+        do rep = 1, reps
+            do ip = 1, np
+                call pm(ip)%init(trim(pl(ip)), je, q0j, v0j, h, st, msg)
+                if (st /= 0) call fail(msg)
+                call system_clock(t0)
+                call pm(ip)%run(je, nsteps, st, msg)
+                call system_clock(t1)
+                if (st /= 0) call fail('a timed run failed')
+                pbest(ip) = min(pbest(ip), real(t1 - t0, wp) / real(rate, wp) / real(nsteps, wp))
+                pworst(ip) = max(pworst(ip), real(t1 - t0, wp) / real(rate, wp) / &
+                                 real(nsteps, wp))
+            end do
+        end do
+        write (output_unit, '(a)') '# processed (kick-drift-kick kernels, Jacobi, Kepler '// &
+            'masses eta_k; maxdE of the corrected output after every step):'
+        do ip = 1, np
+            write (output_unit, '(a,a,a,i0,a,es9.2,a,i0,a,f0.1)') 'planets ', trim(pl(ip)), &
+                ' h=P/', nint(div), ' maxdE=', pmax(ip), ' evals=', pm(ip)%evaluations(), &
+                ' ns_per_step=', 1.0e9_wp * pbest(ip)
+        end do
+        write (output_unit, '(a,f0.2)') '# largest spread of these timings: ', &
+            maxval(pworst / pbest)
+    end subroutine processed_lines
 
     !> The fitted exponents of every table (see `fit_eps_exponents`).
     subroutine print_orders()
