@@ -13,7 +13,8 @@
 !>
 !> Layout (N bodies, NOP stages, NSLOT kernel slots of the method; LABEL_MAX = 64):
 !>
-!>     IW(1) magic   IW(2) N   IW(3) coordinates (1 Jacobi, 2 democratic)   IW(4) NOP
+!>     IW(1) magic   IW(2) N   IW(3) ICOORD (1 Jacobi, 2 democratic, 3 Jacobi eta_k)
+!>     IW(4) NOP
 !>     IW(5) NSLOT   IW(6) length of the label   IW(7) steps done by the last call
 !>     IW(8) status of the last call   IW(9), IW(10) the pair of the last encounter (or the
 !>     body whose mass differs: IW(9); 0 the centre, -1 G)   IW(11) body of a failed Kepler
@@ -171,7 +172,7 @@ contains
     !> refused and nothing is written.
     subroutine pl_setup(label, icoord, n, m0, m, g, hill, rw, lrw, iw, liw, info, msg)
         character(len=*), intent(in) :: label         !! method label
-        integer, intent(in) :: icoord                 !! 1 Jacobi, 2 democratic
+        integer, intent(in) :: icoord                 !! 1 Jacobi, 2 democratic, 3 (eta_k)
         integer, intent(in) :: n                      !! bodies besides the centre
         real(wp), intent(in) :: m0, m(n), g, hill     !! central mass, masses, G, Hill factor
         integer, intent(in) :: lrw, liw               !! lengths of rw and iw
