@@ -3,11 +3,15 @@ C     own arrays, its own input reader and output loop, no modules)
 C     that hands its bodies to forward-symplectic's drop-in routine
 C     FSYMPL. It integrates the Sun and the outer planets of
 C     data/outer_solar_system.txt (AU, days, solar masses) for 2000
-C     years at h = 108.3 days (about P_Jupiter/40) in Jacobi
-C     coordinates, prints the energy error at every output, writes a
-C     checkpoint (the work arrays RW and IW, nothing else) half way,
-C     finishes the run, then resumes a second run from the checkpoint
-C     and checks that it ends bitwise where the first one did.
+C     years at h = 108.3 days (about P_Jupiter/40) with a corrected
+C     method (WHK-L+C17: the lazy kernel, two forces a step, and the
+C     symplectic corrector of order 17, applied only where FSYMPL hands
+C     the state back) in Jacobi coordinates with the Kepler masses
+C     eta_k (ICOORD = 3), prints the energy error at the outputs,
+C     writes a checkpoint (the work arrays RW and IW, nothing else)
+C     half way, finishes the run, then resumes a second run from the
+C     checkpoint and checks that it ends bitwise where the first one
+C     did.
 C
 C     Usage: fsym_legacy_planets [data file] [checkpoint file]
 C     Build: gfortran -ffp-contract=off fsym_legacy_planets.f -lfsym
@@ -17,10 +21,11 @@ C     (doc/legacy.md; CTest: examples.fsym_legacy_planets)
       INTEGER NMAX, LRWMAX, LIWMAX
       PARAMETER (NMAX = 10, LRWMAX = 5000, LIWMAX = 200)
 C     the method: the catalogue label (doc/legacy.md says which)
-      CHARACTER*8 METHOD
-      PARAMETER (METHOD = 'SRKN6b')
-      INTEGER JACOBI
-      PARAMETER (JACOBI = 1)
+      CHARACTER*12 METHOD
+      PARAMETER (METHOD = 'WHK-L+C17')
+C     ICOORD: 1 Jacobi, 2 democratic, 3 Jacobi with Kepler masses eta_k
+      INTEGER JACETA
+      PARAMETER (JACETA = 3)
       DOUBLE PRECISION M0, G, M(NMAX), X(3,NMAX), V(3,NMAX)
       DOUBLE PRECISION XA(3,NMAX), VA(3,NMAX)
       DOUBLE PRECISION RW(LRWMAX), RW2(LRWMAX), H, E0, E, DE, DEMAX
@@ -44,18 +49,19 @@ C
       H = 108.3D0
       IHALF = NOUT / 2
 C
-C     work sizes (LRW = 29 + 13 N + 2 NOP + 3 N NSLOT), then set up
+C     work sizes (LRW = 30 + 13 N + 2 NOP + 3 N NSLOT), then set up
       CALL FSYMPW(METHOD, N, LRW, LIW, INFO)
       IF (INFO .NE. 0 .OR. LRW .GT. LRWMAX .OR. LIW .GT. LIWMAX) THEN
          WRITE (*, '(A,I3,2I8)') 'FAILED: work sizes', INFO, LRW, LIW
          STOP 1
       END IF
-      CALL FSYMPI(METHOD, JACOBI, N, M0, M, G, 0.0D0, RW, LRW, IW,
+      CALL FSYMPI(METHOD, JACETA, N, M0, M, G, 0.0D0, RW, LRW, IW,
      &    LIW, INFO)
       CALL CHECK(INFO, RW, LRW, IW, LIW)
       CALL FSYMPE(N, M0, M, G, X, V, E0)
-      WRITE (*, '(A,A,A,I2,A,F6.1,A)') 'method ', METHOD(1:6),
-     &    ', ', N, ' planets, h = ', H, ' d (Jacobi coordinates)'
+      WRITE (*, '(A,A,A,I2,A,F6.1,A)') 'method ',
+     &    METHOD(1:LEN_TRIM(METHOD)), ', ', N, ' planets, h = ', H,
+     &    ' d (Jacobi, Kepler masses eta_k)'
       WRITE (*, '(A,I5,A,I4)') 'work arrays: LRW =', LRW, ', LIW =', LIW
       WRITE (*, '(A)') '   years   max|dE/E| (at the outputs so far)'
 C

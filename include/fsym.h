@@ -138,20 +138,25 @@ void fsym_status_message(int code, char *buf, int len);
  * A heliocentric legacy code's state: central mass m0, masses m[n] (massive first, then
  * test particles of mass 0), G, heliocentric x[n][3], v[n][3]. The state of the run lives in
  * the caller's work arrays double rw[lrw], int iw[liw] (no global state: reentrant; rw and iw
- * are a checkpoint). lrw = 29 + 13 n + 2 nop + 3 n nslot, liw = 78 + nop (nop stages, nslot
- * = 4, + 1 with gradient kicks, + 2 with extrapolated kicks), or ask fsym_planets_work_size. */
+ * are a checkpoint). lrw = 30 + 13 n + 2 nop + 3 n nslot, liw = 79 + nop (nop stages of the
+ * kernel, 3 with a corrector; nslot = 4, + 1 with gradient kicks, + 2 with extrapolated kicks),
+ * or ask fsym_planets_work_size. Processed labels ("WHK-L+C17", "WH+C17", "WHK-M+C17",
+ * "T2+C5": a kernel with a symplectic corrector applied at output only) are accepted. */
 
 /* Extra accelerations a[n][3] at the heliocentric positions x[n][3] (a J2, a post-Newtonian
  * term, a disk); return non-zero to report a failure (the step is undone, FSYM_ERR_MODEL). */
 typedef int (*fsym_planets_force_fn)(int n, const double *x, double *a, void *user);
 
-enum { FSYM_PLANETS_JACOBI = 1, FSYM_PLANETS_DEMOCRATIC = 2 };
+/* Coordinates: Jacobi (Kepler masses m0 eta_k / eta_(k-1)), democratic heliocentric, Jacobi
+ * with the Kepler masses eta_k (PLANETS_KEPLER_ETA, REBOUND's WHFast choice). */
+enum { FSYM_PLANETS_JACOBI = 1, FSYM_PLANETS_DEMOCRATIC = 2, FSYM_PLANETS_JACOBI_ETA = 3 };
 
 /* Work sizes of the method label for n bodies besides the centre. */
 int fsym_planets_work_size(const char *method, int n, int *lrw, int *liw);
 
-/* Set up rw, iw: method label, coordinates (FSYM_PLANETS_JACOBI or _DEMOCRATIC), masses, G,
- * close-encounter radius hill in mutual Hill radii (0: off). On error nothing is written. */
+/* Set up rw, iw: method label, coordinates (FSYM_PLANETS_JACOBI, _DEMOCRATIC, _JACOBI_ETA), G,
+ * masses, close-encounter radius hill in mutual Hill radii (0: off). On error nothing is
+ * written. */
 int fsym_planets_init(const char *method, int coords, int n, double m0, const double *m,
                       double g, double hill, double *rw, int lrw, int *iw, int liw);
 

@@ -93,7 +93,7 @@ contains
 
     !> `int fsym_planets_init(const char *method, int coords, int n, double m0,
     !> const double *m, double g, double hill, double *rw, int lrw, int *iw, int liw)`: set up
-    !> the work arrays (as FSYMPI; coords 1 Jacobi, 2 democratic).
+    !> the work arrays (as FSYMPI; coords 1 Jacobi, 2 democratic, 3 Jacobi with M_k = eta_k).
     integer(c_int) function fsym_c_planets_init(method, coords, n, m0, m, g, hill, rw, lrw, &
                                                 iw, liw) bind(C, name='fsym_planets_init') &
         result(stat)

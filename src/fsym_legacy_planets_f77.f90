@@ -14,7 +14,9 @@
 !> FSYMNG (gradient term), FSYMGK (the gradient checker). See doc/legacy.md.
 
 !> Work sizes of the method labelled METHOD for N bodies besides the centre:
-!> LRW = 29 + 13 N + 2 NOP + 3 N NSLOT, LIW = 78 + NOP (doc/legacy.md lists NOP and NSLOT).
+!> LRW = 30 + 13 N + 2 NOP + 3 N NSLOT, LIW = 79 + NOP (doc/legacy.md lists NOP and NSLOT).
+!> A corrected label (`WHK-L+C17`, `WH+C17`, `WHK-M+C17`, `T2+C5`: a kernel and a symplectic
+!> corrector of order 3, 5, 7, 11 or 17) has the NOP and NSLOT of its kernel.
 subroutine FSYMPW(METHOD, N, LRW, LIW, INFO)
     use fsym_legacy_planets, only: pl_sizes
     implicit none
@@ -27,15 +29,16 @@ subroutine FSYMPW(METHOD, N, LRW, LIW, INFO)
 end subroutine FSYMPW
 
 !> Set up RW, IW for the method METHOD, coordinates ICOORD (1 Jacobi, 2 democratic
-!> heliocentric), central mass M0, masses M(N) (massive bodies first, then test particles of
-!> mass 0), G, and the close-encounter radius HILL in mutual Hill radii (0: no check). Bad
-!> input or short arrays: INFO /= 0 and nothing written.
+!> heliocentric, 3 Jacobi with the Kepler masses eta_k), central mass M0, masses M(N)
+!> (massive bodies first, then test particles of mass 0), G, and the close-encounter radius
+!> HILL in mutual Hill radii (0: no check). Bad input or short arrays: INFO /= 0 and nothing
+!> written.
 subroutine FSYMPI(METHOD, ICOORD, N, M0, M, G, HILL, RW, LRW, IW, LIW, INFO)
     use fsym_kinds, only: wp
     use fsym_legacy_planets, only: pl_setup
     implicit none
     character(len=*), intent(in) :: METHOD   !! method label
-    integer, intent(in) :: ICOORD            !! 1 Jacobi, 2 democratic heliocentric
+    integer, intent(in) :: ICOORD            !! 1 Jacobi, 2 democratic, 3 Jacobi (eta_k)
     integer, intent(in) :: N                 !! bodies besides the centre
     real(wp), intent(in) :: M0, M(N), G      !! central mass, masses, G
     real(wp), intent(in) :: HILL             !! encounter radius (mutual Hill radii; 0 off)

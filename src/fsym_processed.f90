@@ -32,10 +32,12 @@ module fsym_processed
     implicit none
     private
 
-    public :: fsym_processed_lookup, fsym_corrector_table
+    public :: fsym_processed_lookup, fsym_corrector_table, fsym_processed_maps
 
     !> Orders of the correctors.
     integer, parameter, public :: FSYM_CORRECTOR_ORDERS(5) = [3, 5, 7, 11, 17]
+    !> Stages of an in- or out-map (`fsym_processed_maps`): enough for every order.
+    integer, parameter, public :: FSYM_MAP_MAX = 5 * 16 + 4
     !> Reals of the checkpoint header (tag, order, h).
     integer, parameter :: HEAD = 3
     real(wp), parameter :: PROC_TAG = 7301996.0_wp
@@ -135,7 +137,7 @@ contains
             if (st /= 0) then
                 call fsym_pass(st, msg, stat, errmsg); return
             end if
-            if (kernel_form(kernel) == 0) then
+            if (kernel_form(kernel%op, kernel%c, kernel%u) == 0) then
                 call fsym_report(FSYM_ERR_UNKNOWN_METHOD, '"'//trim(label)//'": correctors '// &
                                  'need a kernel kick/2 drift kick/2 or drift/2 kick drift/2 '// &
                                  '(WH, WHK-M, WHK-L, T2)', stat, errmsg)
@@ -146,15 +148,55 @@ contains
     end subroutine fsym_processed_lookup
 
     !> 1: kick/2 drift kick/2 (both kicks alike); 2: drift/2 kick drift/2; 0: neither.
-    pure integer function kernel_form(s)
-        type(scheme_t), intent(in) :: s
+    pure integer function kernel_form(op, c, u)
+        integer, intent(in) :: op(:)
+        real(wp), intent(in) :: c(:), u(:)
         kernel_form = 0
-        if (s%nop /= 3) return
-        if (s%op(1) /= OP_DRIFT .and. s%op(2) == OP_DRIFT .and. s%op(3) == s%op(1) .and. &
-            s%c(1) == 0.5_wp .and. s%c(3) == 0.5_wp .and. s%u(1) == s%u(3)) kernel_form = 1
-        if (s%op(1) == OP_DRIFT .and. s%op(3) == OP_DRIFT .and. s%op(2) /= OP_DRIFT .and. &
-            s%c(1) == 0.5_wp .and. s%c(3) == 0.5_wp) kernel_form = 2
+        if (size(op) /= 3 .or. size(c) < 3 .or. size(u) < 3) return
+        if (op(1) /= OP_DRIFT .and. op(2) == OP_DRIFT .and. op(3) == op(1) .and. &
+            c(1) == 0.5_wp .and. c(3) == 0.5_wp .and. u(1) == u(3)) kernel_form = 1
+        if (op(1) == OP_DRIFT .and. op(3) == OP_DRIFT .and. op(2) /= OP_DRIFT .and. &
+            c(1) == 0.5_wp .and. c(3) == 0.5_wp) kernel_form = 2
     end function kernel_form
+
+    !> The in-map and the out-map of the corrector of order `order` (3, 5, 7, 11, 17) for the
+    !> kernel table (op, c, u) of `fsym_processed_lookup`, as stage tables run by
+    !> `fsym_kernel_run` (one step of the method's h, the model's Kepler drifts and kicks):
+    !> in = C(+1) then, for a kick-drift-kick kernel, S = (half kick) o (half drift); out =
+    !> S^-1 then C(-1). Arrays of FSYM_MAP_MAX entries suffice; order 0 (or a kernel not of
+    !> the corrector's form): nin = nout = 0.
+    subroutine fsym_processed_maps(op, c, u, order, opi, ci, ui, nin, opo, co, uo, nout)
+        integer, intent(in) :: op(:)                      !! the kernel's op codes
+        real(wp), intent(in) :: c(:), u(:)                !! the kernel's weights
+        integer, intent(in) :: order                      !! corrector order (0: none)
+        integer, intent(out) :: opi(:), opo(:)            !! op codes of the in-, out-map
+        real(wp), intent(out) :: ci(:), ui(:), co(:), uo(:)   !! their weights
+        integer, intent(out) :: nin, nout                 !! their stages
+        integer :: form, nk
+        opi = OP_DRIFT; opo = OP_DRIFT
+        ci = 0.0_wp; ui = 0.0_wp; co = 0.0_wp; uo = 0.0_wp
+        nin = 0; nout = 0
+        form = kernel_form(op, c, u)
+        if (order <= 0 .or. form == 0) return
+        ! in: C(+1), then S = half kick o half drift (kick-drift-kick kernels)
+        call fsym_corrector_table(order, 1.0_wp, opi, ci, nk)
+        nin = nk
+        ! out: S^-1, then C(-1)
+        if (form == 1) then
+            opi(nk + 1:nk + 2) = [OP_DRIFT, op(1)]
+            ci(nk + 1:nk + 2) = [0.5_wp, 0.5_wp]
+            ui(nk + 2) = u(1)
+            nin = nk + 2
+            opo(1:2) = [op(1), OP_DRIFT]
+            co(1:2) = [-0.5_wp, -0.5_wp]
+            ! the inverse half kick: the same point; a gradient weight changes sign,
+            ! an extrapolation shift does not
+            uo(1) = merge(u(1), -u(1), op(1) == OP_EXTRAP_KICK)
+            nout = 2
+        end if
+        call fsym_corrector_table(order, -1.0_wp, opo(nout + 1:), co(nout + 1:), nk)
+        nout = nout + nk
+    end subroutine fsym_processed_maps
 
     !> The corrector C(inv) of order k as stages (drift weights and kick weights in units of
     !> h; adjacent drifts merged, zero drifts dropped): inv = +1 maps a state to the kernel's
@@ -230,9 +272,8 @@ contains
         real(wp), intent(in) :: h                        !! the step
         integer, intent(out), optional :: stat           !! status
         character(len=*), intent(inout), optional :: errmsg  !! message on error
-        integer, parameter :: MAXC = 5 * 16 + 4
-        integer :: st, form, opk(MAXC), nk, ist
-        real(wp) :: ck(MAXC)
+        integer, parameter :: MAXC = FSYM_MAP_MAX
+        integer :: st, ist
         integer(ik) :: nd
         character(len=256) :: msg
         self%ready = .false.
@@ -254,7 +295,6 @@ contains
         if (st /= 0) then
             call fsym_pass(st, msg, stat, errmsg); return
         end if
-        form = kernel_form(self%sc)
         if (allocated(self%opi)) deallocate (self%opi, self%opo, self%ci, self%ui, self%co, &
                                              self%uo)
         allocate (self%opi(MAXC), stat=ist)
@@ -267,30 +307,8 @@ contains
             call fsym_report(FSYM_ERR_NO_MEMORY, 'processed: no memory', stat, errmsg)
             return
         end if
-        self%ui = 0.0_wp; self%uo = 0.0_wp
-        self%nin = 0; self%nout = 0
-        if (self%order > 0) then
-            ! in: C(+1), then S = half kick o half drift (kick-drift-kick kernels)
-            call fsym_corrector_table(self%order, 1.0_wp, opk, ck, nk)
-            self%opi(1:nk) = opk(1:nk); self%ci(1:nk) = ck(1:nk); self%nin = nk
-            ! out: S^-1, then C(-1)
-            if (form == 1) then
-                self%opi(nk + 1:nk + 2) = [OP_DRIFT, self%sc%op(1)]
-                self%ci(nk + 1:nk + 2) = [0.5_wp, 0.5_wp]
-                self%ui(nk + 2) = self%sc%u(1)
-                self%nin = nk + 2
-                self%opo(1:2) = [self%sc%op(1), OP_DRIFT]
-                self%co(1:2) = [-0.5_wp, -0.5_wp]
-                ! the inverse half kick: the same point; a gradient weight changes sign,
-                ! an extrapolation shift does not
-                self%uo(1) = merge(self%sc%u(1), -self%sc%u(1), self%sc%op(1) == OP_EXTRAP_KICK)
-                self%nout = 2
-            end if
-            call fsym_corrector_table(self%order, -1.0_wp, opk, ck, nk)
-            self%opo(self%nout + 1:self%nout + nk) = opk(1:nk)
-            self%co(self%nout + 1:self%nout + nk) = ck(1:nk)
-            self%nout = self%nout + nk
-        end if
+        call fsym_processed_maps(self%sc%op, self%sc%c, self%sc%u, self%order, self%opi, &
+                                 self%ci, self%ui, self%nin, self%opo, self%co, self%uo, self%nout)
         if (allocated(self%qy)) deallocate (self%qy, self%vy)
         allocate (self%qy(self%d, self%n), self%vy(self%d, self%n))
         if (allocated(self%wi)) deallocate (self%wi, self%wo)

@@ -61,7 +61,7 @@ int main(void) {
     /* 40 + 23 steps = 63 steps, bitwise */
     if (setup("SRKN6b", FSYM_PLANETS_JACOBI, N, M0, m, G, 0.0, &rw, &lrw, &iw, &liw))
         return fail("setup");
-    if (lrw != 29 + 13 * N + 2 * 13 + 3 * N * 4 || liw != 78 + 13) return fail("work sizes");
+    if (lrw != 30 + 13 * N + 2 * 13 + 3 * N * 4 || liw != 79 + 13) return fail("work sizes");
     memcpy(x, X0, sizeof x); memcpy(v, V0, sizeof v);
     st = fsym_planets_step(N, M0, m, G, &x[0][0], &v[0][0], H, 40, NULL, NULL, 0.0, rw, lrw,
                            iw, liw);
@@ -130,6 +130,39 @@ int main(void) {
     if (st != FSYM_ERR_ENCOUNTER || memcmp(q, q0, sizeof q) || memcmp(p, p0, sizeof p) ||
         !strstr(msg, "bodies 1 and 2") || iw4[8] != 1 || iw4[9] != 2)
         return fail(msg);
+
+    /* a corrected method (lazy kernel + corrector 17, Kepler masses eta_k): 40 + 23 steps
+     * bitwise 63, the sizes by the formula (nop 3, nslot 6), a restart from copies bitwise */
+    double *rw5, *rw6, *ck5;
+    int *iw5, *iw6, *ick5, lrw5, liw5;
+    if (setup("WHK-L+C17", FSYM_PLANETS_JACOBI_ETA, N, M0, MS, G, 0.0, &rw5, &lrw5, &iw5,
+              &liw5))
+        return fail("setup WHK-L+C17");
+    if (lrw5 != 30 + 13 * N + 2 * 3 + 3 * N * 6 || liw5 != 79 + 3) return fail("sizes WHK-L");
+    memcpy(x, X0, sizeof x); memcpy(v, V0, sizeof v);
+    st = fsym_planets_step(N, M0, MS, G, &x[0][0], &v[0][0], H, 40, NULL, NULL, 0.0, rw5, lrw5,
+                           iw5, liw5);
+    if (st != 0) return fail("WHK-L+C17 40 steps");
+    ck5 = malloc(sizeof(double) * (size_t)lrw5); ick5 = malloc(sizeof(int) * (size_t)liw5);
+    memcpy(ck5, rw5, sizeof(double) * (size_t)lrw5);
+    memcpy(ick5, iw5, sizeof(int) * (size_t)liw5);
+    st = fsym_planets_step(N, M0, MS, G, &x[0][0], &v[0][0], H, 23, NULL, NULL, 0.0, rw5, lrw5,
+                           iw5, liw5);
+    if (st != 0) return fail("WHK-L+C17 23 steps");
+    if (setup("WHK-L+C17", FSYM_PLANETS_JACOBI_ETA, N, M0, MS, G, 0.0, &rw6, &lrw5, &iw6,
+              &liw5))
+        return fail("setup WHK-L+C17 2");
+    memcpy(y, X0, sizeof y); memcpy(w, V0, sizeof w);
+    st = fsym_planets_step(N, M0, MS, G, &y[0][0], &w[0][0], H, 63, NULL, NULL, 0.0, rw6, lrw5,
+                           iw6, liw5);
+    if (st != 0 || memcmp(x, y, sizeof x) || memcmp(v, w, sizeof v))
+        return fail("WHK-L+C17 40 + 23");
+    st = fsym_planets_state(N, &y[0][0], &w[0][0], ck5, lrw5, ick5, liw5);
+    st = st ? st : fsym_planets_step(N, M0, MS, G, &y[0][0], &w[0][0], H, 23, NULL, NULL, 0.0,
+                                     ck5, lrw5, ick5, liw5);
+    if (st != 0 || memcmp(x, y, sizeof x) || memcmp(v, w, sizeof v))
+        return fail("WHK-L+C17 restart");
+    free(rw5); free(iw5); free(rw6); free(iw6); free(ck5); free(ick5);
 
     double e;
     if (fsym_planets_energy(N, M0, MS, G, &X0[0][0], &V0[0][0], &e) != 0 || !(e < 0.0))
