@@ -532,6 +532,15 @@ contains
     !>
     !> Kick-drift-kick is conjugate to the drift-kick-drift kernels of those papers by
     !> S = (half kick) o (half drift): the correctors of `fsym_processed` include S.
+    !>
+    !> And the two-force methods of J. Laskar and P. Robutel, *High order symplectic
+    !> integrators for perturbed Hamiltonian systems*, Celest. Mech. Dyn. Astron. 80 (2001)
+    !> 39-62, whose error is eps h^4 + eps^2 h^2 (second order for T + V in general):
+    !>
+    !> * `SABA2`: drift c1, kick 1/2, drift c2, kick 1/2, drift c1 with c1 = 1/2 - sqrt(3)/6,
+    !>   c2 = sqrt(3)/3;
+    !> * `SBAB2`: kick 1/6, drift 1/2, kick 2/3, drift 1/2, kick 1/6 (the paper's A without
+    !>   its gradient term; two forces per step, the last reused by the next step).
     subroutine build_wh_kernel(key, s, st)
         character(len=*), intent(in) :: key
         type(scheme_t), intent(inout) :: s
@@ -547,6 +556,15 @@ contains
             call fsym_scheme_custom('WHK-L', [OP_EXTRAP_KICK, OP_DRIFT, OP_EXTRAP_KICK], &
                                     [0.5_wp, 1.0_wp, 0.5_wp], &
                                     [1.0_wp / 12.0_wp, 0.0_wp, 1.0_wp / 12.0_wp], 2, s, st, msg)
+        case ('saba2')
+            call alternating_custom('SABA2', 2, OP_DRIFT, &
+                                    [0.5_wp - sqrt(3.0_wp) / 6.0_wp, sqrt(3.0_wp) / 3.0_wp, &
+                                     0.5_wp - sqrt(3.0_wp) / 6.0_wp], [0.5_wp, 0.5_wp], &
+                                    s, st, msg)
+        case ('sbab2')
+            call alternating_custom('SBAB2', 2, OP_KICK, &
+                                    [1.0_wp / 6.0_wp, 2.0_wp / 3.0_wp, 1.0_wp / 6.0_wp], &
+                                    [0.5_wp, 0.5_wp], s, st, msg)
         case default
             call alternating_custom('WH', 2, OP_KICK, [0.5_wp, 0.5_wp], [1.0_wp], s, st, msg)
         end select
@@ -565,7 +583,8 @@ contains
 
     !> Build a scheme from its label, case-insensitive: T2, FR, A, A', C, C', AN and AN'
     !> (3 <= N <= `FSYM_AN_MAX`), M1 (McLachlan's member), M1(t1), M2(t1), GFR5(alpha), BM,
-    !> BM-mf, SRKN6b, and the Wisdom-Holman kernels WH, WHK-M, WHK-L. A prime may be written ',
+    !> BM-mf, SRKN6b, the Wisdom-Holman kernels WH, WHK-M, WHK-L and Laskar and Robutel's
+    !> SABA2, SBAB2. A prime may be written ',
     !> the Unicode prime, or `prime`; a parameter as a decimal number or a fraction p/q. Blanks
     !> are ignored; the rest may be at most `FSYM_LABEL_LEN` characters. On error `scheme` is
     !> untouched and `stat` says why (`FSYM_ERR_UNKNOWN_METHOD`, `FSYM_ERR_BAD_PARAMETER`,
@@ -626,7 +645,7 @@ contains
         case ('bm'); call build_bm('BM', OP_DRIFT, s, st)
         case ('bm-mf'); call build_bm('BM-mf', OP_KICK, s, st)
         case ('srkn6b'); call build_srkn6b(s, st)
-        case ('wh', 'whk-m', 'whk-l'); call build_wh_kernel(key(1:nb), s, st)
+        case ('wh', 'whk-m', 'whk-l', 'saba2', 'sbab2'); call build_wh_kernel(key(1:nb), s, st)
         case ('m1')
             if (has_arg) then
                 call fsym_scheme_m1(x, s, st, msg, name=trim(member))
@@ -668,7 +687,7 @@ contains
             else
                 call fsym_report(FSYM_ERR_UNKNOWN_METHOD, '"'//trim(shown)// &
                                  '" (known: T2 FR A A'' C C'' AN AN'' M1 M1(t1) M2(t1)'// &
-                                 ' GFR5(alpha) BM BM-mf SRKN6b WH WHK-M WHK-L;'// &
+                                 ' GFR5(alpha) BM BM-mf SRKN6b WH WHK-M WHK-L SABA2 SBAB2;'// &
                                  ' RKN is not a splitting)', stat, errmsg)
                 return
             end if

@@ -2,7 +2,8 @@
 !> data file of scripts/planets.sh) over `years` years at h = P_Jupiter/`div`, with every
 !> method of the catalogue run with Kepler drifts (the Wisdom-Holman splitting, Jacobi
 !> coordinates; `[dh]`: democratic heliocentric) and the best kinetic + potential method
-!> (Chin's C on the Newtonian N-body model, `C(T+V)`). One line per method:
+!> (Chin's C on the Newtonian N-body model, `C(T+V)`), and J. Laskar and P. Robutel's two-force
+!> SABA2, SBAB2 (Celest. Mech. Dyn. Astron. 80 (2001) 39). One line per method:
 !> Then the processed methods of `fsym_processed` (WH, WHK-M, WHK-L kernels with correctors, e.g.
 !> `WHK-L+C17`), maxdE from the corrected output after every step, in the same line form.
 !>
@@ -86,15 +87,19 @@ program fsym_planets_bench
     allocate (q0j(3, n), v0j(3, n), q0d(3, n), v0d(3, n), q(3, n), v(3, n))
     call jac%to_state(xb, vb, q0j, v0j, xcm, vcm)
     call dem%to_state(xb, vb, q0d, v0d, xcm, vcm)
-    ! the methods: the catalogue with Kepler drifts (Jacobi), T2 and C' also democratic
+    ! the methods: the catalogue with Kepler drifts (Jacobi), T2 and C' also democratic, and
+    ! Laskar & Robutel's SABA2, SBAB2
     nc = size(fsym_catalogue())
-    nmeth = nc + 2
+    nmeth = nc + 4
     allocate (names(nmeth), schemes(nmeth), coords(nmeth), best(nmeth + 1), &
               worst(nmeth + 1), maxde(nmeth + 1), evals(nmeth + 1))
     names(1:nc) = fsym_catalogue()
     coords(1:nc) = PLANETS_JACOBI
     names(nc + 1) = 'T2'; coords(nc + 1) = PLANETS_DEMOCRATIC
     names(nc + 2) = 'C'''; coords(nc + 2) = PLANETS_DEMOCRATIC
+    ! Laskar & Robutel's two-force methods (eps h^4 + eps^2 h^2), Jacobi
+    names(nc + 3) = 'SABA2'; coords(nc + 3) = PLANETS_JACOBI
+    names(nc + 4) = 'SBAB2'; coords(nc + 4) = PLANETS_JACOBI
     do i = 1, nmeth
         call fsym_scheme_by_name(trim(names(i)), schemes(i), st, msg)
         if (st /= 0) call fail(msg)

@@ -26,20 +26,26 @@ contains
     !> (Jacobi; masses eps and eps/2 at a = 1 and 2.5, 4 inner periods): with e(eps) the
     !> end-state error of the outer planet against SRKN6b at h/40, 4 e(eps) - e(2 eps) =
     !> 2 eps a and e(2 eps) - 2 e(eps) = 2 eps^2 b to O(eps^3); p and q from h = P/20 and
-    !> P/40 at eps = 1e-3. `stat` is the first failing run's status (0: none).
-    subroutine fit_eps_exponents(scheme, sref, p, q, stat)
+    !> P/40 at eps = 1e-3 (or from P/`nper` and P/(2 `nper`), at `eps`). `stat` is the first failing
+    !> run's status (0: none).
+    subroutine fit_eps_exponents(scheme, sref, p, q, stat, nper, eps)
         type(scheme_t), intent(in) :: scheme   !! the table to fit
         type(scheme_t), intent(in) :: sref     !! the reference table (SRKN6b)
         real(wp), intent(out) :: p             !! exponent of the eps term
         real(wp), intent(out) :: q             !! exponent of the eps^2 term
         integer, intent(out) :: stat           !! 0, or a run's failure
-        real(wp), parameter :: EPS = 1.0e-3_wp
+        integer, intent(in), optional :: nper  !! the larger step is P/nper (default 20)
+        real(wp), intent(in), optional :: eps  !! the smaller mass ratio (default 1e-3)
+        real(wp) :: e0
         real(wp) :: e1(6), e2(6), ea(2), eb(2)
-        integer :: k
+        integer :: k, n0
+        n0 = 20; e0 = 1.0e-3_wp
+        if (present(nper)) n0 = nper
+        if (present(eps)) e0 = eps
         do k = 1, 2
-            call end_error(EPS, 20 * 2**(k - 1), e1, stat)
+            call end_error(e0, n0 * 2**(k - 1), e1, stat)
             if (stat /= 0) return
-            call end_error(2.0_wp * EPS, 20 * 2**(k - 1), e2, stat)
+            call end_error(2.0_wp * e0, n0 * 2**(k - 1), e2, stat)
             if (stat /= 0) return
             ea(k) = norm2(4.0_wp * e1 - e2)
             eb(k) = norm2(e2 - 2.0_wp * e1)
