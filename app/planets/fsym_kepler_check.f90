@@ -114,14 +114,14 @@ contains
             ! pericentre distance `scale`, true anomaly within the orbit's range
             rp = scale
             p = rp * (1.0_wp + e)
-            fmax = PI_Q
+            fmax = real(PI_Q, wp)
             if (e >= 1.0_wp) fmax = 0.98_wp * acos(-1.0_wp / e)
             f = fmax * (2.0_wp * u(4) - 1.0_wp)
             r = p / (1.0_wp + e * cos(f))
             q = r * [cos(f), sin(f), 0.0_wp]
             v = sqrt(gm / p) * [-sin(f), e + cos(f), 0.0_wp]
             tscale = sqrt(r**3 / gm)
-            if (e < 1.0_wp) tscale = 2.0_wp * PI_Q * sqrt((rp / (1.0_wp - e))**3 / gm)
+            if (e < 1.0_wp) tscale = real(2.0_wp * PI_Q * sqrt((rp / (1.0_wp - e))**3 / gm), wp)
         end if
         call random_number(u)
         call rotate(q, v, u(1:3))
@@ -132,11 +132,12 @@ contains
     pure subroutine rotate(q, v, u)
         real(wp), intent(inout) :: q(3), v(3)
         real(wp), intent(in) :: u(3)
-        real(wp) :: a, b, c, m(3, 3)
-        a = 2.0_wp * PI_Q * u(1)
+        real(wp) :: a, b, c, m(3, 3), mbc(3, 3)
+        a = real(2.0_wp * PI_Q * u(1), wp)
         b = acos(2.0_wp * u(2) - 1.0_wp)
-        c = 2.0_wp * PI_Q * u(3)
-        m = matmul(rz(a), matmul(rx(b), rz(c)))
+        c = real(2.0_wp * PI_Q * u(3), wp)
+        mbc = matmul(rx(b), rz(c))
+        m = matmul(rz(a), mbc)
         q = matmul(m, q)
         v = matmul(m, v)
     contains
