@@ -21,7 +21,7 @@
 !> that the grid does not resolve (`resolved`, also checked at the end of `run`).
 module fsym_itp
     use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr
-    use fsym_kinds, only: wp, ik
+    use fsym_kinds, only: wp, ik, fsym_same
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_ARGUMENT, FSYM_ERR_BAD_STEP, &
                            FSYM_ERR_NONFINITE_FORCE, FSYM_ERR_NONFINITE_STATE, FSYM_ERR_SHAPE, &
                            FSYM_ERR_STEP_TOO_LARGE, FSYM_ERR_NOT_INITIALIZED, &
@@ -113,7 +113,7 @@ contains
         if (present(nstates)) ns = nstates
         self%g = 0.0_wp
         if (present(g)) self%g = g
-        if (ns < 1 .or. (self%g /= 0.0_wp .and. ns /= 1) .or. &
+        if (ns < 1 .or. (.not. fsym_same(self%g, 0.0_wp) .and. ns /= 1) .or. &
             .not. (abs(self%g) <= huge(1.0_wp))) then
             call fsym_report(FSYM_ERR_BAD_ARGUMENT, 'imaginary time: nstates >= 1, a finite '// &
                              'g, and one state when g /= 0', stat, errmsg)
@@ -217,9 +217,10 @@ contains
             if (self%stage(k)%kind /= ITP_POTENTIAL) self%fft_per_step = self%fft_per_step + 2
         end do
         if (self%fsal) self%fft_per_step = self%fft_per_step - 2
-        if (self%g /= 0.0_wp .and. any(self%stage(:)%u /= 0.0_wp)) then
+        if (.not. fsym_same(self%g, 0.0_wp) .and. &
+            .not. all(fsym_same(self%stage(:)%u, 0.0_wp))) then
             self%fft_per_step = self%fft_per_step + 1 + d
-        else if (self%g /= 0.0_wp .and. self%fsal) then
+        else if (.not. fsym_same(self%g, 0.0_wp) .and. self%fsal) then
             self%fft_per_step = self%fft_per_step + 1   ! the density needs psi
         end if
         self%e_norm(:) = 0.0_wp
@@ -389,11 +390,11 @@ contains
         npts = self%grid%npts
         if (self%fsal) then
             self%psik_bak(:, :) = self%psik
-            if (self%g /= 0.0_wp) call materialize(self)   ! the density needs psi
+            if (.not. fsym_same(self%g, 0.0_wp)) call materialize(self)   ! the density needs psi
         else
             self%work(1:npts, 1:self%nstates) = self%psi(1:npts, :)
         end if
-        if (self%g /= 0.0_wp) then
+        if (.not. fsym_same(self%g, 0.0_wp)) then
             call gp_factors(self, st, msg)
             if (st /= FSYM_SUCCESS) then
                 call fsym_report(st, msg, stat, errmsg)
@@ -526,7 +527,7 @@ contains
             do i = 1, npts
                 rho(i) = self%psi(i, 1)**2
             end do
-            if (any(self%stage(:)%u /= 0.0_wp) .and. self%fsal) then
+            if (.not. all(fsym_same(self%stage(:)%u, 0.0_wp)) .and. self%fsal) then
                 ! grad rho = 2 psi grad psi, grad psi from the spectrum held (d FFTs)
                 self%gsq(:) = 0.0_wp
                 do j = 1, d
@@ -537,7 +538,7 @@ contains
                                                      self%psi(i, 1) * self%work(i, ir + j))**2
                     end do
                 end do
-            else if (any(self%stage(:)%u /= 0.0_wp)) then
+            else if (.not. all(fsym_same(self%stage(:)%u, 0.0_wp))) then
                 call self%grid%forward(self%work(:, ir))
                 self%gsq(:) = 0.0_wp
                 do j = 1, d
@@ -625,7 +626,9 @@ contains
                / npts * self%grid%dvol
         nrm2 = sum(self%psi(1:npts, s)**2) * self%grid%dvol
         e = ekin + sum(self%v * self%psi(1:npts, s)**2) * self%grid%dvol
-        if (self%g /= 0.0_wp) e = e + 0.5_wp * self%g * sum(self%psi(1:npts, s)**4) * self%grid%dvol
+        if (.not. fsym_same(self%g, 0.0_wp)) then
+            e = e + 0.5_wp * self%g * sum(self%psi(1:npts, s)**4) * self%grid%dvol
+        end if
         e = e / nrm2
     end function itp_energy
 

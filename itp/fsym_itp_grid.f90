@@ -65,8 +65,8 @@ contains
         character(len=*), intent(inout), optional :: errmsg  !! message on error
         integer :: d, j, i1, i2, i3, idx, ist, m(3), nr(3)
         real(wp) :: kk(3)
-        real(c_double), pointer :: rp(:)
-        complex(c_double_complex), pointer :: cp(:)
+        real(c_double), pointer, contiguous :: rp(:)
+        complex(c_double_complex), pointer, contiguous :: cp(:)
 
         d = size(n)
         if (d < 1 .or. d > 3 .or. size(box) /= d) then

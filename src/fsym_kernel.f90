@@ -135,9 +135,8 @@ contains
             end if
             if (moved) call fsym_kernel_invalidate(ks)
         end if
-        flow = model%has_drift(); timed = .false.; tau = 0.0_wp
+        flow = model%has_drift(); timed = .false.; tau = 0.0_wp; hs = h
         if (present(t0)) timed = model%has_time()
-        hs = h
         steps: do i = 1, max(nsteps, 1_ik)
             qok = .true.; vok = .true.; resumed = ks%active
             if (resumed) then
@@ -212,12 +211,13 @@ contains
                 case default
                     fresh = fa; fa = .false.
                 end select
-                vwas = vok
-                two = op(k) == OP_GRAD_KICK
+                vwas = vok; two = op(k) == OP_GRAD_KICK
                 vok = upd(v, w(:, :, ks%ivc), w(:, :, ks%iv0), c(k) * hs, w(:, :, iy), &
                           u(k) * hs**3, g, two, ks%vsaved)
                 ks%vsaved = .true.
-                if (.not. (vok .or. forces_ok(w(:, :, iyf), two, fa, vwas))) return
+                if (.not. vok) then   ! forces_ok (impure) only after a kick that failed
+                    if (.not. forces_ok(w(:, :, iyf), two, fa, vwas)) return
+                end if
             end do
             ks%pc = nop + 1
             if (resumed) then     ! the tests of the stages before the suspension are gone

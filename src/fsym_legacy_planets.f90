@@ -44,7 +44,7 @@
 module fsym_legacy_planets
     use, intrinsic :: iso_fortran_env, only: int64
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
-    use fsym_kinds, only: wp, ik
+    use fsym_kinds, only: wp, ik, fsym_same
     use fsym_status
     use fsym_scheme, only: scheme_t, OP_GRAD_KICK
     use fsym_force, only: force_model_t
@@ -307,7 +307,7 @@ contains
             info = FSYM_ERR_BAD_ARGUMENT
         else if (fsym_overlap(x, v)) then
             info = FSYM_ERR_BAD_ARGUMENT; iw(9) = -1
-        else if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
+        else if (fsym_same(h, 0.0_wp) .or. .not. abs(h) <= huge(h)) then
             info = FSYM_ERR_BAD_STEP
         else if (.not. (all(abs(x) <= huge(x)) .and. all(abs(v) <= huge(v)))) then
             info = FSYM_ERR_NONFINITE_STATE      ! refused before the image takes it over

@@ -18,7 +18,7 @@
 !> changes the continuing trajectory. A checkpoint is the kernel's checkpoint of the mapped
 !> state behind a short header (corrector order and h), so a restart is bitwise.
 module fsym_processed
-    use fsym_kinds, only: wp, ik
+    use fsym_kinds, only: wp, ik, fsym_same
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_ARGUMENT, FSYM_ERR_UNKNOWN_METHOD, &
                            FSYM_ERR_SHAPE, FSYM_ERR_BAD_STEP, FSYM_ERR_NOT_INITIALIZED, &
                            FSYM_ERR_NO_MEMORY, &
@@ -154,9 +154,10 @@ contains
         kernel_form = 0
         if (size(op) /= 3 .or. size(c) < 3 .or. size(u) < 3) return
         if (op(1) /= OP_DRIFT .and. op(2) == OP_DRIFT .and. op(3) == op(1) .and. &
-            c(1) == 0.5_wp .and. c(3) == 0.5_wp .and. u(1) == u(3)) kernel_form = 1
+            fsym_same(c(1), 0.5_wp) .and. fsym_same(c(3), 0.5_wp) .and. &
+            fsym_same(u(1), u(3))) kernel_form = 1
         if (op(1) == OP_DRIFT .and. op(3) == OP_DRIFT .and. op(2) /= OP_DRIFT .and. &
-            c(1) == 0.5_wp .and. c(3) == 0.5_wp) kernel_form = 2
+            fsym_same(c(1), 0.5_wp) .and. fsym_same(c(3), 0.5_wp)) kernel_form = 2
     end function kernel_form
 
     !> The in-map and the out-map of the corrector of order `order` (3, 5, 7, 11, 17) for the
@@ -232,7 +233,7 @@ contains
             call put(OP_DRIFT, za(j))
         end do
         if (nst > 0) then
-            if (op(nst) == OP_DRIFT .and. c(nst) == 0.0_wp) nst = nst - 1
+            if (op(nst) == OP_DRIFT .and. fsym_same(c(nst), 0.0_wp)) nst = nst - 1
         end if
     contains
         subroutine pairs(b)
@@ -251,7 +252,7 @@ contains
             if (o == OP_DRIFT .and. nst > 0) then
                 if (op(nst) == OP_DRIFT) then
                     c(nst) = c(nst) + x
-                    if (c(nst) == 0.0_wp) nst = nst - 1
+                    if (fsym_same(c(nst), 0.0_wp)) nst = nst - 1
                     return
                 end if
             end if
@@ -277,7 +278,7 @@ contains
         integer(ik) :: nd
         character(len=256) :: msg
         self%ready = .false.
-        if (.not. (h /= 0.0_wp .and. abs(h) <= huge(h))) then
+        if (fsym_same(h, 0.0_wp) .or. .not. abs(h) <= huge(h)) then
             call fsym_report(FSYM_ERR_BAD_STEP, 'processed: the step must be finite and '// &
                              'non-zero', stat, errmsg)
             return
@@ -469,7 +470,8 @@ contains
                              stat, errmsg)
             return
         end if
-        if (ck(1) /= PROC_TAG .or. ck(2) /= real(self%order, wp) .or. ck(3) /= self%h) then
+        if (.not. (fsym_same(ck(1), PROC_TAG) .and. fsym_same(ck(2), real(self%order, wp)) &
+                   .and. fsym_same(ck(3), self%h))) then
             call fsym_report(FSYM_ERR_CHECKPOINT, 'processed: the checkpoint is of '// &
                              'another corrector or step', stat, errmsg)
             return
