@@ -215,9 +215,7 @@ contains
                 vok = upd(v, w(:, :, ks%ivc), w(:, :, ks%iv0), c(k) * hs, w(:, :, iy), &
                           u(k) * hs**3, g, two, ks%vsaved)
                 ks%vsaved = .true.
-                if (.not. vok) then   ! forces_ok (impure) only after a kick that failed
-                    if (.not. forces_ok(w(:, :, iyf), two, fa, vwas)) return
-                end if
+                if (.not. (vok .or. forces_ok(w(:, :, iyf), two, fa, vwas))) return
             end do
             ks%pc = nop + 1
             if (resumed) then     ! the tests of the stages before the suspension are gone
