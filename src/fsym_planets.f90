@@ -44,9 +44,10 @@
 !> the pair, so the host can hand over. Every face then reports the library status
 !> FSYM_ERR_ENCOUNTER with that message (`failure`, called by the faces after a failed step).
 module fsym_planets
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use fsym_kinds, only: wp, ik, fsym_same
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_BAD_ARGUMENT, FSYM_ERR_SHAPE, fsym_report, &
-                           fsym_int_text, FSYM_ERR_ENCOUNTER
+                           fsym_int_text, FSYM_ERR_ENCOUNTER, FSYM_ERR_NOT_INITIALIZED
     use fsym_force, only: force_model_t
     use fsym_kepler_universal, only: fsym_kepler_drift_many
     implicit none
@@ -59,6 +60,8 @@ module fsym_planets
     integer, parameter, public :: PLANETS_ENCOUNTER = 1001
     !> Model status of a drift whose Kepler solve failed (the model keeps the body).
     integer, parameter, public :: PLANETS_KEPLER_FAILED = 1002
+    !> Model status of a call on a model that was never set up (`init` not called or failed).
+    integer, parameter, public :: PLANETS_NOT_SET_UP = 1003
     !> Jacobi Kepler masses M_k = m0 eta_k/eta_{k-1} (Wisdom & Holman 1991; the default).
     integer, parameter, public :: PLANETS_KEPLER_WH = 1
     !> Jacobi Kepler masses M_k = eta_k (as REBOUND's WHFast).
@@ -256,14 +259,22 @@ contains
 
     !> The state arrays of the model's coordinate set from an inertial state (any frame; the
     !> centre of mass is returned so that `from_state` can restore the frame).
-    subroutine planets_to_state(self, xb, vb, q, v, xcm, vcm)
+    subroutine planets_to_state(self, xb, vb, q, v, xcm, vcm, stat, errmsg)
         class(planets_model_t), intent(in) :: self     !! the model (after init)
         real(wp), intent(in) :: xb(3, 0:self%n)        !! inertial positions (centre: 0)
         real(wp), intent(in) :: vb(3, 0:self%n)        !! inertial velocities
         real(wp), intent(out) :: q(3, self%n)          !! state positions
         real(wp), intent(out) :: v(3, self%n)          !! state velocities
         real(wp), intent(out) :: xcm(3), vcm(3)        !! centre of mass and its velocity
+        integer, intent(out), optional :: stat         !! status (absent: stop on error)
+        character(len=*), intent(inout), optional :: errmsg  !! message on error
         integer :: i
+        if (present(stat)) stat = FSYM_SUCCESS
+        if (.not. allocated(self%m)) then    ! never set up: nothing to convert
+            call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'planets: to_state on a model that '// &
+                             'was never set up (call init first)', stat, errmsg)
+            return
+        end if
         if (self%coords == PLANETS_JACOBI) then
             call planets_bary_to_jacobi(self%n, self%m, self%eta, xb, q, xcm)
             call planets_bary_to_jacobi(self%n, self%m, self%eta, vb, v, vcm)
@@ -282,14 +293,22 @@ contains
     end subroutine planets_to_state
 
     !> The inertial state from the state arrays and the centre of mass (`to_state`'s inverse).
-    subroutine planets_from_state(self, q, v, xcm, vcm, xb, vb)
+    subroutine planets_from_state(self, q, v, xcm, vcm, xb, vb, stat, errmsg)
         class(planets_model_t), intent(in) :: self     !! the model (after init)
         real(wp), intent(in) :: q(3, self%n), v(3, self%n)  !! state arrays
         real(wp), intent(in) :: xcm(3), vcm(3)         !! centre of mass and its velocity
         real(wp), intent(out) :: xb(3, 0:self%n)       !! inertial positions
         real(wp), intent(out) :: vb(3, 0:self%n)       !! inertial velocities
+        integer, intent(out), optional :: stat         !! status (absent: stop on error)
+        character(len=*), intent(inout), optional :: errmsg  !! message on error
         real(wp) :: mt
         integer :: i
+        if (present(stat)) stat = FSYM_SUCCESS
+        if (.not. allocated(self%m)) then    ! never set up: nothing to convert
+            call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'planets: from_state on a model that '// &
+                             'was never set up (call init first)', stat, errmsg)
+            return
+        end if
         if (self%coords == PLANETS_JACOBI) then
             call planets_jacobi_to_bary(self%n, self%m, self%eta, q, xcm, xb)
             call planets_jacobi_to_bary(self%n, self%m, self%eta, v, vcm, vb)
@@ -309,12 +328,17 @@ contains
         end if
     end subroutine planets_from_state
 
-    !> Total energy (kinetic + Newtonian potential, in the centre-of-mass frame) of a state.
+    !> Total energy (kinetic + Newtonian potential, in the centre-of-mass frame) of a state;
+    !> NaN for a model that was never set up.
     real(wp) function planets_energy(self, q, v) result(e)
         class(planets_model_t), intent(inout) :: self  !! the model (after init)
         real(wp), intent(in) :: q(3, self%n), v(3, self%n)  !! state arrays
         real(wp) :: z(3)
         integer :: i, j
+        if (.not. allocated(self%m)) then    ! never set up: NaN (documented), never a stop
+            e = ieee_value(e, ieee_quiet_nan)
+            return
+        end if
         z = 0.0_wp
         call self%from_state(q, v, z, z, self%x, self%dx)
         e = 0.0_wp
@@ -339,6 +363,7 @@ contains
         real(wp), intent(in) :: dt                      !! time to flow
         integer, intent(inout) :: stat                  !! 0 on entry; non-zero = failure
         integer :: st, ifail
+        if (not_set_up(self, stat)) return
         self%ndrift = self%ndrift + 1
         self%failed = 0
         if (self%coords == PLANETS_DEMOCRATIC) call jump(0.5_wp * dt)
@@ -391,6 +416,7 @@ contains
         integer, intent(inout) :: stat                  !! 0 on entry; non-zero = failure
         real(wp) :: z(3), r2
         integer :: i0, k
+        if (not_set_up(self, stat)) return
         self%failed = 0
         z = 0.0_wp
         if (self%coords == PLANETS_JACOBI) then
@@ -437,6 +463,7 @@ contains
         integer, intent(inout) :: stat                  !! 0 on entry; non-zero = failure
         real(wp) :: z(3), r2, qa
         integer :: i0, k
+        if (not_set_up(self, stat)) return
         if (allocated(self%extra)) then
             g = 0.0_wp
             stat = 1
@@ -535,7 +562,16 @@ contains
         character(len=*), intent(inout) :: msg       !! the model's text
         if (self%failed == PLANETS_ENCOUNTER) code = FSYM_ERR_ENCOUNTER
         if (self%failed /= 0) msg = self%message
+        if (.not. allocated(self%m)) msg = 'planets: the model was never set up (call init first)'
     end subroutine planets_failure
+
+    !> True, with stat = PLANETS_NOT_SET_UP, for a model that was never set up.
+    logical function not_set_up(self, stat)
+        class(planets_model_t), intent(in) :: self
+        integer, intent(out) :: stat
+        not_set_up = .not. allocated(self%m)
+        stat = merge(PLANETS_NOT_SET_UP, 0, not_set_up)
+    end function not_set_up
 
     !> Fail with PLANETS_ENCOUNTER when a massive pair, or a test particle and a massive body,
     !> are within `hill` mutual Hill radii (inertial positions in self%x).
