@@ -243,11 +243,13 @@ contains
             end if
             fp = r
             fpp = eta * g0 + zeta * g1
-            ! near the root (|F F''| <= 1e-3 F'^2) Halley's step, cubic like Laguerre's and equal
-            ! to it to second order in F, without the square root; else Laguerre's
+            ! the last step, near the root (|F F''| <= 1e-3 F'^2, a correction below 1e-6 |s|):
+            ! Halley's, cubic like Laguerre's and equal to it to second order in F, without the
+            ! square root; else Laguerre's
             den = 2.0_wp * fp * fp
             sn = s - (2.0_wp * f * fp) / (den - f * fpp)
-            if (.not. (abs(f) * abs(fpp) <= 5.0e-4_wp * den .and. ieee_is_finite(sn))) then
+            if (.not. (abs(f) * abs(fpp) <= 5.0e-4_wp * den .and. ieee_is_finite(sn) .and. &
+                       abs(sn - s) <= 1.0e-6_wp * abs(sn))) then
                 disc = sqrt(abs((LN - 1.0_wp)**2 * fp * fp - LN * (LN - 1.0_wp) * f * fpp))
                 den = fp + sign(disc, fp)
                 sn = s - LN * f / den
