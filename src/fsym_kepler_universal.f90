@@ -42,6 +42,9 @@ module fsym_kepler_universal
 
     real(wp), parameter :: TWO_PI = 6.28318530717958647692528676655900577_wp
     real(wp), parameter :: SIXTH = 1.0_wp / 6.0_wp, TWELFTH = 1.0_wp / 12.0_wp
+    !> Bodies per block of the many-body form's branch-free fast path (a multiple of the
+    !> vector width; the block is padded with a harmless orbit).
+    integer, parameter :: NB = 4
     !> Iteration limit of the bracketed Laguerre solve (bisection alone needs < 2200 steps to
     !> shrink any double bracket to one rounding; Laguerre takes 2 to 6 in practice).
     integer, parameter :: MAX_ITER = 400
@@ -86,20 +89,157 @@ contains
         real(wp), intent(in) :: dt          !! time to advance (any sign)
         integer, intent(out) :: stat        !! 0 on success; FSYM_ERR_* of the first failure
         integer, intent(out) :: ifail       !! index of the first failing body (0: none)
-        real(wp) :: q1(3), v1(3)
-        integer :: j
+        real(wp) :: q1(3), v1(3), qn(3, NB), vn(3, NB)
+        logical :: ok(NB)
+        integer :: j, j0, k, m
         stat = FSYM_SUCCESS
         ifail = 0
-        do j = 1, n
-            call kepler_step(gm(j), q(:, j), v(:, j), dt, q1, v1, stat)
-            if (stat /= FSYM_SUCCESS) then
-                ifail = j
-                return
+        ! blocks of NB bodies through the fast path; a body it does not take (any other case
+        ! than a small step on an orbit not near-parabolic, or any doubt) goes to kepler_step,
+        ! which gives the same bits where the fast path applies
+        ok = .false.
+        do j0 = 1, n, NB
+            m = min(NB, n - j0 + 1)
+            if (ieee_is_finite(dt) .and. .not. is_zero(dt)) then
+                call drift_block(m, gm(j0:j0 + m - 1), q(:, j0:j0 + m - 1), &
+                                 v(:, j0:j0 + m - 1), dt, qn, vn, ok)
             end if
-            q(:, j) = q1
-            v(:, j) = v1
+            do k = 1, m
+                j = j0 + k - 1
+                if (ok(k)) then
+                    q(:, j) = qn(:, k)
+                    v(:, j) = vn(:, k)
+                    cycle
+                end if
+                call kepler_step(gm(j), q(:, j), v(:, j), dt, q1, v1, stat)
+                if (stat /= FSYM_SUCCESS) then
+                    ifail = j
+                    return
+                end if
+                q(:, j) = q1
+                v(:, j) = v1
+            end do
         end do
     end subroutine fsym_kepler_drift_many
+
+    !> The fast path of kepler_step for m <= NB bodies at once, written without branches so
+    !> that the compiler vectorises it over the bodies: the fifth-order guess, one Halley
+    !> step, the Taylor update of the G_k, the new state, with the very operations of
+    !> kepler_step and solve_universal (hence their bits). ok(k) is true only where
+    !> kepler_step would have taken the same path: finite input with r > 0 and gm > 0, an orbit
+    !> not near-parabolic (|beta| >= gm/(4 r0)), |beta s^2| < 0.1 at the guess (so |dt| is far
+    !> below half a period and the guess lies in the bracket), a Halley correction accepted
+    !> at the first iteration (|F F''| <= 1e-3 F'^2, |d| <= 1e-6 |s|, d^2 |beta| <= 1e-10),
+    !> F not exactly zero, r > 0 and a finite result.
+    pure subroutine drift_block(m, gm, q, v, dt, qn, vn, ok)
+        integer, intent(in) :: m                 !! bodies in the block (1..NB)
+        real(wp), intent(in) :: gm(m)            !! gravitational parameters
+        real(wp), intent(in) :: q(3, m), v(3, m) !! relative positions and velocities
+        real(wp), intent(in) :: dt               !! time to advance (finite, non-zero)
+        real(wp), intent(out) :: qn(3, NB)       !! new positions where ok
+        real(wp), intent(out) :: vn(3, NB)       !! new velocities where ok
+        logical, intent(out) :: ok(NB)           !! the fast path applies
+        ! whole-array statements over NB lanes: each is a loop without branches that the
+        ! compiler vectorises (one loop over the whole computation is not: its tests become
+        ! jumps)
+        real(wp), dimension(NB) :: qx, qy, qz, vx, vy, vz, mu, r2, w2, r0, ir0, gmr0, eta, &
+                                   beta, zeta, x, a1, a2, a3, a4, b2, b3, b4, s, xs, c0, c1, &
+                                   c2, c3, g0, g1, g2, g3, f, fp, fpp, den, sn, d, t1, r, ir
+        logical, dimension(NB) :: good
+        integer :: k
+        ! structure of arrays, padded with a circular orbit
+        qx = 1.0_wp; qy = 0.0_wp; qz = 0.0_wp; vx = 0.0_wp; vy = 1.0_wp; vz = 0.0_wp
+        mu = 1.0_wp
+        do k = 1, m
+            qx(k) = q(1, k); qy(k) = q(2, k); qz(k) = q(3, k)
+            vx(k) = v(1, k); vy(k) = v(2, k); vz(k) = v(3, k)
+            mu(k) = gm(k)
+        end do
+        r2 = qx**2 + qy**2 + qz**2
+        w2 = vx**2 + vy**2 + vz**2
+        ! finite q, v (their squares' sums finite), r > 0, 0 < gm finite; a body that fails
+        ! is computed as the padding orbit and not taken
+        good = r2 > 0.0_wp .and. r2 <= huge(1.0_wp) .and. w2 <= huge(1.0_wp) .and. &
+               mu > 0.0_wp .and. mu <= huge(1.0_wp)
+        qx = merge(qx, 1.0_wp, good); qy = merge(qy, 0.0_wp, good)
+        qz = merge(qz, 0.0_wp, good); vx = merge(vx, 0.0_wp, good)
+        vy = merge(vy, 1.0_wp, good); vz = merge(vz, 0.0_wp, good)
+        mu = merge(mu, 1.0_wp, good)
+        r2 = merge(r2, 1.0_wp, good)
+        w2 = merge(w2, 1.0_wp, good)
+        r0 = sqrt(r2)
+        ir0 = 1.0_wp / r0
+        gmr0 = mu * ir0
+        eta = qx * vx + qy * vy + qz * vz
+        beta = 2.0_wp * gmr0 - w2
+        zeta = mu - beta * r0
+        x = dt * ir0
+        a1 = 0.5_wp * eta * ir0
+        a2 = (zeta * ir0) * SIXTH
+        a3 = -(beta * a1) * TWELFTH
+        a4 = -(beta * a2) * 0.05_wp
+        b2 = 2.0_wp * a1 * a1 - a2
+        b3 = (5.0_wp * a1) * (a2 - a1 * a1) - a3
+        b4 = (a1 * a1) * (14.0_wp * a1 * a1 - 21.0_wp * a2) + 6.0_wp * a1 * a3 &
+             + 3.0_wp * a2 * a2 - a4
+        s = x * (1.0_wp + x * (-a1 + x * (b2 + x * (b3 + x * b4))))
+        xs = beta * s * s
+        c2 = 1.0_wp - (xs * RC2(4)) * (1.0_wp - xs * RC2(5))
+        c3 = 1.0_wp - (xs * RC3(4)) * (1.0_wp - xs * RC3(5))
+        c2 = 1.0_wp - (xs * RC2(3)) * c2
+        c3 = 1.0_wp - (xs * RC3(3)) * c3
+        c2 = 1.0_wp - (xs * RC2(2)) * c2
+        c3 = 1.0_wp - (xs * RC3(2)) * c3
+        c2 = 1.0_wp - (xs * RC2(1)) * c2
+        c3 = 1.0_wp - (xs * RC3(1)) * c3
+        c2 = 0.5_wp * c2
+        c3 = c3 * SIXTH
+        c0 = 1.0_wp - xs * c2
+        c1 = 1.0_wp - xs * c3
+        g0 = c0
+        g1 = s * c1
+        g2 = s * s * c2
+        g3 = s * s * s * c3
+        f = r0 * g1 + eta * g2 + mu * g3 - dt
+        fp = r0 * g0 + eta * g1 + mu * g2
+        fpp = eta * g0 + zeta * g1
+        den = 2.0_wp * fp * fp
+        sn = s - (2.0_wp * f * fp) / (den - f * fpp)
+        d = sn - s
+        good = good .and. abs(beta) >= 0.25_wp * gmr0 .and. abs(xs) < 0.1_wp .and. &
+               s * dt > 0.0_wp .and. abs(f) * abs(fpp) <= 5.0e-4_wp * den .and. &
+               abs(d) <= 1.0e-6_wp * abs(sn) .and. d * d * abs(beta) <= 1.0e-10_wp .and. &
+               abs(f) > 0.0_wp
+        g3 = g3 + d * (g2 + d * (0.5_wp * g1 + d * g0 * SIXTH))
+        g2 = g2 + d * (g1 + d * (0.5_wp * g0 - d * beta * g1 * SIXTH))
+        t1 = g1
+        g1 = g1 + d * (g0 - d * beta * (0.5_wp * t1 + d * g0 * SIXTH))
+        g0 = g0 - d * beta * (t1 + d * (0.5_wp * g0 - d * beta * t1 * SIXTH))
+        r = r0 * g0 + eta * g1 + mu * g2
+        good = good .and. r > 0.0_wp .and. r <= huge(1.0_wp)
+        ir = 1.0_wp / merge(r, 1.0_wp, good)
+        ! f - 1, g, fd, gd - 1 (in c0, c1, c2, c3) and the new state
+        c0 = -gmr0 * g2
+        c1 = r0 * g1 + eta * g2
+        c2 = -(gmr0 * g1) * ir
+        c3 = -(mu * g2) * ir
+        r2 = qx + (c0 * qx + c1 * vx)
+        w2 = vx + (c2 * qx + c3 * vx)
+        qx = r2; vx = w2
+        r2 = qy + (c0 * qy + c1 * vy)
+        w2 = vy + (c2 * qy + c3 * vy)
+        qy = r2; vy = w2
+        r2 = qz + (c0 * qz + c1 * vz)
+        w2 = vz + (c2 * qz + c3 * vz)
+        qz = r2; vz = w2
+        ok = good .and. abs(qx) <= huge(1.0_wp) .and. abs(qy) <= huge(1.0_wp) .and. &
+             abs(qz) <= huge(1.0_wp) .and. abs(vx) <= huge(1.0_wp) .and. &
+             abs(vy) <= huge(1.0_wp) .and. abs(vz) <= huge(1.0_wp)
+        do k = 1, m
+            qn(:, k) = [qx(k), qy(k), qz(k)]
+            vn(:, k) = [vx(k), vy(k), vz(k)]
+        end do
+    end subroutine drift_block
 
     !> The state (q1, v1) at time dt along the orbit through (q, v); `stat` as above.
     pure subroutine kepler_step(gm, q, v, dt, q1, v1, stat)
