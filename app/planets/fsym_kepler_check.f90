@@ -12,16 +12,20 @@
 !> Stumpff functions by their series after argument quartering, so it shares no arithmetic
 !> with the solver under test.
 !>
+!> Every draw also checks that the many-body form `fsym_kepler_drift_many` (one body) gives
+!> the bits and the status of `fsym_kepler_drift` at dt, dt/10^3 and dt/10^6; a difference
+!> counts as a failure.
+!>
 !> Errors (all relative, measured in real128 from the double results):
 !> energy |dE| / (|v|^2/2 + gm/r), angular momentum |dL| / (r |v|), LRL vector |dA| / (gm +
 !> r |v|^2) (scales: the larger of the two ends), phase |q - q_ref| / (|q_ref| + |v_ref| |dt|)
 !> (the position error over the distance the orbit covers: the mean anomaly error relative to
 !> n dt for long runs), velocity |v - v_ref| / (|v_ref| + gm |dt| / |q_ref|^2).
 module fsym_kepler_check
-    use, intrinsic :: iso_fortran_env, only: real128
+    use, intrinsic :: iso_fortran_env, only: real128, int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use fsym_kinds, only: wp
-    use fsym_kepler_universal, only: fsym_kepler_drift
+    use fsym_kepler_universal, only: fsym_kepler_drift, fsym_kepler_drift_many
     implicit none
     private
 
@@ -61,6 +65,14 @@ contains
             v1 = v
             call fsym_kepler_drift(gm, q1, v1, dt, st)
             res%draws(cls) = res%draws(cls) + 1
+            ! the many-body form (its vectorised fast path) must give the one-body form's
+            ! bits, here and on steps a thousand and a million times shorter (where the fast
+            ! path applies); a difference counts as a failure
+            if (.not. (same_as_many(dt) .and. same_as_many(1.0e-3_wp * dt) .and. &
+                       same_as_many(1.0e-6_wp * dt))) then
+                res%failures(cls) = res%failures(cls) + 1
+                cycle
+            end if
             if (st /= 0) then
                 res%failures(cls) = res%failures(cls) + 1
                 if (any(q1 /= q) .or. any(v1 /= v)) res%changed(cls) = res%changed(cls) + 1
@@ -73,6 +85,19 @@ contains
             call kepler_errors(gm, q, v, dt, q1, v1, err)
             res%worst(:, cls) = max(res%worst(:, cls), err)
         end do
+    contains
+        !> Whether fsym_kepler_drift_many (one body) gives fsym_kepler_drift's bits and status.
+        logical function same_as_many(t) result(same)
+            real(wp), intent(in) :: t
+            real(wp) :: qa(3), va(3), qb(3, 1), vb(3, 1), gmb(1)
+            integer :: sa, sb, ifail
+            qa = q; va = v
+            call fsym_kepler_drift(gm, qa, va, t, sa)
+            qb(:, 1) = q; vb(:, 1) = v; gmb(1) = gm
+            call fsym_kepler_drift_many(1, gmb, qb, vb, t, sb, ifail)
+            same = sa == sb .and. all(transfer(qa, 1_int64, 3) == transfer(qb(:, 1), 1_int64, 3)) &
+                   .and. all(transfer(va, 1_int64, 3) == transfer(vb(:, 1), 1_int64, 3))
+        end function same_as_many
     end subroutine kepler_check_draws
 
     !> One random draw of class `cls` (1..KC_CLASSES).
