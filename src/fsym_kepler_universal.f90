@@ -53,7 +53,7 @@ module fsym_kepler_universal
     real(wp), parameter :: TWO_PI = 6.28318530717958647692528676655900577_wp
     real(wp), parameter :: SIXTH = 1.0_wp / 6.0_wp, TWELFTH = 1.0_wp / 12.0_wp
     !> Bodies per block of the many-body form's branch-free fast path (a multiple of the
-    !> vector width; the block is padded with a harmless orbit).
+    !> vector width; a short block is padded with copies of its first body).
     integer, parameter :: NB = 4
     !> Iteration limit of the bracketed Laguerre solve (bisection alone needs < 2200 steps to
     !> shrink any double bracket to one rounding; Laguerre takes 2 to 6 in practice).
@@ -110,7 +110,8 @@ contains
         ok = .false.
         do j0 = 1, n, NB
             m = min(NB, n - j0 + 1)
-            if (ieee_is_finite(dt) .and. .not. is_zero(dt)) then
+            ! (a block of one body costs no less than its scalar solve)
+            if (m > 1 .and. ieee_is_finite(dt) .and. .not. is_zero(dt)) then
                 call drift_block(m, gm(j0:j0 + m - 1), q(:, j0:j0 + m - 1), &
                                  v(:, j0:j0 + m - 1), dt, qn, vn, ok)
             end if
@@ -158,10 +159,11 @@ contains
                                    c2, c3, g0, g1, g2, g3, f, fp, fpp, den, sn, d, t1, r, ir, &
                                    good
         integer :: k
-        ! structure of arrays, padded with a circular orbit
-        qx = 1.0_wp; qy = 0.0_wp; qz = 0.0_wp; vx = 0.0_wp; vy = 1.0_wp; vz = 0.0_wp
-        mu = 1.0_wp
-        do k = 1, m
+        ! structure of arrays, padded with copies of the first body (an arbitrary orbit could
+        ! meet this dt with overflows or subnormal numbers, which are slow)
+        qx = q(1, 1); qy = q(2, 1); qz = q(3, 1); vx = v(1, 1); vy = v(2, 1); vz = v(3, 1)
+        mu = gm(1)
+        do k = 2, m
             qx(k) = q(1, k); qy(k) = q(2, k); qz(k) = q(3, k)
             vx(k) = v(1, k); vy(k) = v(2, k); vz(k) = v(3, k)
             mu(k) = gm(k)
