@@ -107,9 +107,9 @@ contains
         ! blocks of NB bodies through the fast path; a body it does not take (any other case
         ! than a small step on an orbit not near-parabolic, or any doubt) goes to kepler_step,
         ! which gives the same bits where the fast path applies
-        ok = .false.
         do j0 = 1, n, NB
             m = min(NB, n - j0 + 1)
+            ok = .false.
             ! (a block of one body costs no less than its scalar solve)
             if (m > 1 .and. ieee_is_finite(dt) .and. .not. is_zero(dt)) then
                 call drift_block(m, gm(j0:j0 + m - 1), q(:, j0:j0 + m - 1), &

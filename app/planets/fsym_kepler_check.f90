@@ -12,7 +12,7 @@
 !> Stumpff functions by their series after argument quartering, so it shares no arithmetic
 !> with the solver under test.
 !>
-!> Every draw also checks that the many-body form `fsym_kepler_drift_many` (two copies) gives
+!> Every draw also checks that the many-body form `fsym_kepler_drift_many` (five variants) gives
 !> the bits and the status of `fsym_kepler_drift` at dt, dt/10^3 and dt/10^6; a difference
 !> counts as a failure.
 !>
@@ -86,21 +86,24 @@ contains
             res%worst(:, cls) = max(res%worst(:, cls), err)
         end do
     contains
-        !> Whether fsym_kepler_drift_many (two copies of the body: a block of one takes the
-        !> scalar solve) gives fsym_kepler_drift's bits and status.
+        !> Whether fsym_kepler_drift_many on five variants of the body (the draw and its
+        !> position scaled by 1 + 0.01 k: a block of four on the fast path, a block of one on
+        !> the scalar solve) gives fsym_kepler_drift's bits and status for each.
         logical function same_as_many(t) result(same)
             real(wp), intent(in) :: t
-            real(wp) :: qa(3), va(3), qb(3, 2), vb(3, 2), gmb(2)
-            integer :: sa, sb, ifail, j
-            qa = q; va = v
-            call fsym_kepler_drift(gm, qa, va, t, sa)
-            qb(:, 1) = q; vb(:, 1) = v; qb(:, 2) = q; vb(:, 2) = v; gmb = gm
-            call fsym_kepler_drift_many(2, gmb, qb, vb, t, sb, ifail)
-            same = sa == sb
-            do j = 1, 2
-                same = same .and. all(transfer(qa, 1_int64, 3) == transfer(qb(:, j), 1_int64, 3))
-                same = same .and. all(transfer(va, 1_int64, 3) == transfer(vb(:, j), 1_int64, 3))
+            real(wp) :: qa(3, 5), va(3, 5), qb(3, 5), vb(3, 5), gmb(5)
+            integer :: sa(5), sb, ifail, j
+            do j = 1, 5
+                qa(:, j) = q * (1.0_wp + 0.01_wp * (j - 1)); va(:, j) = v
+                qb(:, j) = qa(:, j); vb(:, j) = va(:, j)
+                call fsym_kepler_drift(gm, qa(:, j), va(:, j), t, sa(j))
             end do
+            gmb = gm
+            call fsym_kepler_drift_many(5, gmb, qb, vb, t, sb, ifail)
+            same = all(sa == 0) .eqv. (sb == 0)
+            if (.not. same .or. sb /= 0) return
+            same = all(transfer(qa, 1_int64, 15) == transfer(qb, 1_int64, 15)) .and. &
+                   all(transfer(va, 1_int64, 15) == transfer(vb, 1_int64, 15))
         end function same_as_many
     end subroutine kepler_check_draws
 
