@@ -268,8 +268,8 @@ contains
         good = merge(good, 0.0_wp, abs(vz) <= huge(1.0_wp))
         ok = good > 0.5_wp
         do k = 1, m
-            qn(:, k) = [qx(k), qy(k), qz(k)]
-            vn(:, k) = [vx(k), vy(k), vz(k)]
+            qn(1, k) = qx(k); qn(2, k) = qy(k); qn(3, k) = qz(k)
+            vn(1, k) = vx(k); vn(2, k) = vy(k); vn(3, k) = vz(k)
         end do
     end subroutine drift_block
 
