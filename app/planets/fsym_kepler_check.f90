@@ -12,16 +12,20 @@
 !> Stumpff functions by their series after argument quartering, so it shares no arithmetic
 !> with the solver under test.
 !>
+!> Every draw also checks that the many-body form `fsym_kepler_drift_many` (five variants) gives
+!> the bits and the status of `fsym_kepler_drift` at dt, dt/10^3 and dt/10^6; a difference
+!> counts as a failure.
+!>
 !> Errors (all relative, measured in real128 from the double results):
 !> energy |dE| / (|v|^2/2 + gm/r), angular momentum |dL| / (r |v|), LRL vector |dA| / (gm +
 !> r |v|^2) (scales: the larger of the two ends), phase |q - q_ref| / (|q_ref| + |v_ref| |dt|)
 !> (the position error over the distance the orbit covers: the mean anomaly error relative to
 !> n dt for long runs), velocity |v - v_ref| / (|v_ref| + gm |dt| / |q_ref|^2).
 module fsym_kepler_check
-    use, intrinsic :: iso_fortran_env, only: real128
+    use, intrinsic :: iso_fortran_env, only: real128, int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
     use fsym_kinds, only: wp, fsym_same
-    use fsym_kepler_universal, only: fsym_kepler_drift
+    use fsym_kepler_universal, only: fsym_kepler_drift, fsym_kepler_drift_many
     implicit none
     private
 
@@ -61,6 +65,14 @@ contains
             v1 = v
             call fsym_kepler_drift(gm, q1, v1, dt, st)
             res%draws(cls) = res%draws(cls) + 1
+            ! the many-body form (its vectorised fast path) must give the one-body form's
+            ! bits, here and on steps a thousand and a million times shorter (where the fast
+            ! path applies); a difference counts as a failure
+            if (.not. (same_as_many(dt) .and. same_as_many(1.0e-3_wp * dt) .and. &
+                       same_as_many(1.0e-6_wp * dt))) then
+                res%failures(cls) = res%failures(cls) + 1
+                cycle
+            end if
             if (st /= 0) then
                 res%failures(cls) = res%failures(cls) + 1
                 if (.not. (all(fsym_same(q1, q)) .and. all(fsym_same(v1, v)))) then
@@ -75,6 +87,26 @@ contains
             call kepler_errors(gm, q, v, dt, q1, v1, err)
             res%worst(:, cls) = max(res%worst(:, cls), err)
         end do
+    contains
+        !> Whether fsym_kepler_drift_many on five variants of the body (the draw and its
+        !> position scaled by 1 + 0.01 k: a block of four on the fast path, a block of one on
+        !> the scalar solve) gives fsym_kepler_drift's bits and status for each.
+        logical function same_as_many(t) result(same)
+            real(wp), intent(in) :: t
+            real(wp) :: qa(3, 5), va(3, 5), qb(3, 5), vb(3, 5), gmb(5)
+            integer :: sa(5), sb, ifail, j
+            do j = 1, 5
+                qa(:, j) = q * (1.0_wp + 0.01_wp * (j - 1)); va(:, j) = v
+                qb(:, j) = qa(:, j); vb(:, j) = va(:, j)
+                call fsym_kepler_drift(gm, qa(:, j), va(:, j), t, sa(j))
+            end do
+            gmb = gm
+            call fsym_kepler_drift_many(5, gmb, qb, vb, t, sb, ifail)
+            same = all(sa == 0) .eqv. (sb == 0)
+            if (.not. same .or. sb /= 0) return
+            same = all(transfer(qa, 1_int64, 15) == transfer(qb, 1_int64, 15)) .and. &
+                   all(transfer(va, 1_int64, 15) == transfer(vb, 1_int64, 15))
+        end function same_as_many
     end subroutine kepler_check_draws
 
     !> One random draw of class `cls` (1..KC_CLASSES).
