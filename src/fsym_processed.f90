@@ -38,8 +38,8 @@ module fsym_processed
     integer, parameter, public :: FSYM_CORRECTOR_ORDERS(5) = [3, 5, 7, 11, 17]
     !> Stages of an in- or out-map (`fsym_processed_maps`): enough for every order.
     integer, parameter, public :: FSYM_MAP_MAX = 5 * 16 + 4
-    !> Reals of the checkpoint header (tag, order, h).
-    integer, parameter :: HEAD = 3
+    !> Reals of the checkpoint header (tag, corrector order, h, steps done).
+    integer, parameter :: HEAD = 4
     real(wp), parameter :: PROC_TAG = 7301996.0_wp
 
     ! a_i = i a_1, a_1 = sqrt(7/40) (Wisdom, Holman & Touma 1996)
@@ -422,8 +422,26 @@ contains
     !> Length of the checkpoint: a header (tag, corrector order, h, steps) and the kernel's.
     integer(ik) function processed_checkpoint_length(self)
         class(processed_t), intent(inout) :: self        !! the processed method
-        processed_checkpoint_length = HEAD + 1 + self%it%checkpoint_length()
+        processed_checkpoint_length = HEAD + self%it%checkpoint_length()
     end function processed_checkpoint_length
+
+    !> True, with the status reported, when the method is not set up or a checkpoint of
+    !> `length` reals does not fit it (the entry check of save and load).
+    logical function checkpoint_refused(self, length, stat, errmsg) result(refused)
+        class(processed_t), intent(inout) :: self
+        integer(ik), intent(in) :: length
+        integer, intent(out), optional :: stat
+        character(len=*), intent(inout), optional :: errmsg
+        refused = .true.
+        if (.not. self%ready) then
+            call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'processed: not set up', stat, errmsg)
+        else if (length /= self%checkpoint_length()) then
+            call fsym_report(FSYM_ERR_SHAPE, 'processed: checkpoint of the wrong length', &
+                             stat, errmsg)
+        else
+            refused = .false.
+        end if
+    end function checkpoint_refused
 
     !> Write the checkpoint: the header and the kernel's checkpoint of the mapped state.
     subroutine processed_save_checkpoint(self, ck, stat, errmsg)
@@ -433,18 +451,10 @@ contains
         character(len=*), intent(inout), optional :: errmsg  !! message on error
         integer :: st
         character(len=256) :: msg
-        if (.not. self%ready) then
-            call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'processed: not set up', stat, errmsg)
-            return
-        end if
-        if (size(ck, kind=ik) /= self%checkpoint_length()) then
-            call fsym_report(FSYM_ERR_SHAPE, 'processed: checkpoint of the wrong length', &
-                             stat, errmsg)
-            return
-        end if
+        if (checkpoint_refused(self, size(ck, kind=ik), stat, errmsg)) return
         ck(1) = PROC_TAG; ck(2) = real(self%order, wp); ck(3) = self%h
         ck(4) = real(self%steps, wp)
-        call self%it%save_checkpoint(self%qy, self%vy, ck(HEAD + 2:), st, msg)
+        call self%it%save_checkpoint(self%qy, self%vy, ck(HEAD + 1:), st, msg)
         if (st /= 0) then
             call fsym_pass(st, msg, stat, errmsg); return
         end if
@@ -461,22 +471,14 @@ contains
         character(len=*), intent(inout), optional :: errmsg  !! message on error
         integer :: st
         character(len=256) :: msg
-        if (.not. self%ready) then
-            call fsym_report(FSYM_ERR_NOT_INITIALIZED, 'processed: not set up', stat, errmsg)
-            return
-        end if
-        if (size(ck, kind=ik) /= self%checkpoint_length()) then
-            call fsym_report(FSYM_ERR_SHAPE, 'processed: checkpoint of the wrong length', &
-                             stat, errmsg)
-            return
-        end if
+        if (checkpoint_refused(self, size(ck, kind=ik), stat, errmsg)) return
         if (.not. (fsym_same(ck(1), PROC_TAG) .and. fsym_same(ck(2), real(self%order, wp)) &
                    .and. fsym_same(ck(3), self%h))) then
             call fsym_report(FSYM_ERR_CHECKPOINT, 'processed: the checkpoint is of '// &
                              'another corrector or step', stat, errmsg)
             return
         end if
-        call self%it%load_checkpoint(self%qy, self%vy, ck(HEAD + 2:), st, msg)
+        call self%it%load_checkpoint(self%qy, self%vy, ck(HEAD + 1:), st, msg)
         if (st /= 0) then
             call fsym_pass(st, msg, stat, errmsg); return
         end if
