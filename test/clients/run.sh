@@ -72,7 +72,7 @@ stage_f77() {
     build_modern "$work"
     say "gfortran f77_nbody.f -L$prefix/lib -lfsym   (nothing else)"
     gfortran "${fflags[@]}" "$here/f77_nbody.f" -L"$prefix/lib" -lfsym -o "$work/f77_nbody"
-    if nm "$work/f77_nbody" | grep -qiE 'h5[a-z]*_|dgeev|dgesv'; then
+    if grep -qiE 'h5[a-z]*_|dgeev|dgesv' <<< "$(nm "$work/f77_nbody")"; then
         say "HDF5/LAPACK symbols linked"; exit 1
     fi
     "$work/f77_nbody" > "$work/f77.txt"
