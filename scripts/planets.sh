@@ -12,6 +12,11 @@
 #       best kinetic + potential method C(T+V), one line per method,
 #       `planets METHOD h=P/40 maxdE=X evals=E ns_per_step=T` (E: force evaluations per step, a
 #       gradient counted as one; T: min over 5 repetitions, run in turn); a minute or two
+#   bash scripts/planets.sh --eps-split [data-file]   the same at h = P_Jupiter/40 with every
+#       planet's mass times s = 1, 1/2, 1/4, 1/8 (one repetition): the part of max|dE/E| linear
+#       in the mass ratio eps scales as s, the eps^2 part as s^2; lines
+#       `epsplit METHOD s=S maxdE=X maxdE/s=Y` and, from the two smallest s (Y = a + b s),
+#       `epsplit METHOD linear=a eps2_at_s1=b` (a: the eps-linear part at the real masses)
 # Environment:
 #   FSYM_RACE_VENV         the race's own Python environment (default
 #                          ~/.cache/forward-symplectic/race-venv), REBOUND pinned below
@@ -23,6 +28,24 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/setup.sh
 source scripts/apps.sh   # fsym_app: the programs of app/
+if [ "${1:-}" = --eps-split ]; then
+    data=${2:-../shared/data/outer_solar_system.txt}
+    [ -f "$data" ] || data=data/outer_solar_system.txt
+    lscpu 2>/dev/null | sed -n 's/^Model name: */# cpu: /p' || true
+    echo "# git: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+    exe=$(fsym_app_exe fsym-planets-bench --profile release \
+        --flag "-std=f2008 -O2 -march=native -ffp-contract=off")
+    lines=$(for s in 1 0.5 0.25 0.125; do
+        "$exe" "$data" 2000 40 1 "$s" | awk -v s="$s" '$1 == "planets" && $4 == "maxdE=" {
+            printf "epsplit %s s=%s maxdE=%.3e maxdE/s=%.3e\n", $2, s, $5, $5 / s }'
+    done)
+    printf '%s\n' "$lines"
+    printf '%s\n' "$lines" | awk '{ split($3, a, "="); split($5, y, "=")
+            if (a[2] == 0.25) y4[$2] = y[2]; if (a[2] == 0.125) y8[$2] = y[2] }
+        END { for (k in y8) printf "epsplit %s linear=%.3e eps2_at_s1=%.3e\n", k,
+              2 * y8[k] - y4[k], (y4[k] - y8[k]) / 0.125 }' | sort
+    exit
+fi
 if [ "${1:-}" = --quick ]; then
     data=${2:-../shared/data/outer_solar_system.txt}
     [ -f "$data" ] || data=data/outer_solar_system.txt

@@ -14,7 +14,10 @@
 !> the minimum over `reps` repetitions taken in turn (method after method, then again), with
 !> the spread (max/min) on a comment line.
 !>
-!> Usage: fsym-planets-bench data-file [years [div [reps]]]
+!> Usage: fsym-planets-bench data-file [years [div [reps [mscale]]]]
+!>        (mscale: every planet's mass times mscale, the Sun's unchanged; 1 by default; the
+!>        error linear in the mass ratio eps then scales as mscale, the eps^2 part as mscale^2,
+!>        which `bash scripts/planets.sh --eps-split` uses to separate them)
 !>        fsym-planets-bench --orders   (fitted eps and h exponents of every table, lines
 !>                                       `orders METHOD order=N p=P q=Q`, as test_planets)
 program fsym_planets_bench
@@ -37,7 +40,7 @@ program fsym_planets_bench
                              v0d(:, :), q(:, :), v(:, :), &
                              qb(:, :), ub(:, :), best(:), worst(:), maxde(:)
     integer, allocatable :: evals(:)
-    real(wp) :: years, div, pj, h, xcm(3), vcm(3), e0, aj, rj, vj2, mu
+    real(wp) :: years, div, pj, h, xcm(3), vcm(3), e0, aj, rj, vj2, mu, mscale
     integer(int64) :: nsteps, k, t0, t1, rate
     integer :: reps, nmeth, i, j, st, isun, n, nc, rep
     call get_command_argument(1, path)
@@ -45,15 +48,23 @@ program fsym_planets_bench
         call print_orders()
         stop
     end if
-    years = 2000.0_wp; div = 40.0_wp; reps = 5
+    years = 2000.0_wp; div = 40.0_wp; reps = 5; mscale = 1.0_wp
     if (command_argument_count() >= 2) then
-        call get_command_argument(2, arg); read (arg, *) years
+        call get_command_argument(2, arg); read (arg, *, iostat=st) years
+        if (st /= 0) call fail('cannot read argument 2: '//trim(arg))
     end if
     if (command_argument_count() >= 3) then
-        call get_command_argument(3, arg); read (arg, *) div
+        call get_command_argument(3, arg); read (arg, *, iostat=st) div
+        if (st /= 0) call fail('cannot read argument 3: '//trim(arg))
     end if
     if (command_argument_count() >= 4) then
-        call get_command_argument(4, arg); read (arg, *) reps
+        call get_command_argument(4, arg); read (arg, *, iostat=st) reps
+        if (st /= 0) call fail('cannot read argument 4: '//trim(arg))
+    end if
+    if (command_argument_count() >= 5) then
+        call get_command_argument(5, arg); read (arg, *, iostat=st) mscale
+        if (st /= 0) call fail('cannot read argument 5: '//trim(arg))
+        if (.not. (mscale > 0.0_wp)) call fail('mscale must be positive')
     end if
     call read_solar_data(trim(path), dat, st, msg)
     if (st /= 0) call fail(msg)
@@ -70,7 +81,7 @@ program fsym_planets_bench
     do i = 1, dat%n
         if (i == isun) cycle
         j = j + 1
-        m(j) = dat%m(i)
+        m(j) = mscale * dat%m(i)
         xb(:, j) = dat%q0(:, i); vb(:, j) = dat%v0(:, i)
     end do
     ! P_Jupiter from its heliocentric two-body energy (the first body)
