@@ -14,11 +14,12 @@ expect() {
     local name=$1 final=$2
     shift 2
     local rc=0
+    echo old > "$f"   # an older file under the final name must survive a refused run
     "$prog" "$@" > "$dir/out.txt" 2> "$dir/err.txt" || rc=$?
     local problems=()
     [ "$rc" -ne 0 ] || problems+=("exit status 0")
-    grep -q 'fsym_itp_run' "$dir/err.txt" || problems+=("no message naming the program")
-    if [ -f "$final" ] && [ "$(cat "$final")" != old ]; then
+    grep -q '^fsym_itp_run: ' "$dir/err.txt" || problems+=("no message 'fsym_itp_run: ...'")
+    if [ -f "$final" ] && ! cmp -s "$final" "$dir/old.txt"; then
         problems+=("$final written")
     fi
     if compgen -G "$dir/*.part" > /dev/null; then
@@ -33,7 +34,7 @@ expect() {
 }
 
 f=$dir/run.h5
-echo old > "$f"   # an older file under the final name must survive a refused run
+echo old > "$dir/old.txt"
 expect "bad method label"      "$f" pt1d NOSUCH 0.05 30 "$f"
 expect "tau = 0"               "$f" pt1d A 0 30 "$f"
 expect "tau < 0"               "$f" pt1d A -0.05 30 "$f"
@@ -51,11 +52,11 @@ if [ ! -d "$dir/adir" ]; then
     echo "FAIL the directory given as FILE.h5 is gone"
     failed=$((failed + 1))
 fi
-[ "$(cat "$f")" = old ] || { echo "FAIL $f changed"; failed=$((failed + 1)); }
 
 # the control: the same call with good input succeeds and replaces the old file
+echo old > "$f"
 if "$prog" pt1d A 0.05 1 "$f" > "$dir/out.txt" 2> "$dir/err.txt" \
-    && [ "$(head -c 4 "$f")" != old ]; then
+    && ! cmp -s "$f" "$dir/old.txt"; then
     echo "ok   control run                  wrote $f"
 else
     echo "FAIL control run: $(cat "$dir/err.txt")"
