@@ -21,7 +21,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export FSYM_MPI=1   # the release tree builds the MPI parts: setup installs OpenMPI
-export FSYM_PLOTS=1 # h5py for the H5MD conformance tests of test/h5
+export FSYM_PLOTS=1 # h5py for the H5MD conformance tests of test/h5 and test/itp (itp_h5.*)
 source scripts/progress.sh
 trap 'fsym_heartbeat_stop' EXIT
 fsym_heartbeat_start

@@ -11,14 +11,20 @@
 !>   /grid/x<j>                                 [n_j] coordinates along axis j, unit L
 !>   /observables/energy/{step,time,value}      [steps], [steps], [steps, nstates]: <H>
 !>   /observables/energy_norm/{step,time,value} the norm-decay energies
-!>   /fields/psi/value                          [nstates, n3, n2, n1], unit L^(-d/2)
-!>   /fields/density/value                      [n3, n2, n1]: psi_1^2, unit L^-d
+!>   /fields/psi/value                          [nstates, n2*n3, n1], unit L^(-d/2)
+!>   /fields/density/value                      [n2*n3, n1]: psi_1^2, unit L^-d
+!> (1D: n2*n3 = 1). Checked by scripts/check_h5md.py (tests itp_h5.*, test/itp).
+!> Bad arguments (a number that does not read, an unknown problem or method, tau <= 0,
+!> TEND < TAU, an output directory that cannot be written) end the run before any work with
+!> exit status 1 and a message; a failure while writing (or a FILE.h5 that is a directory,
+!> found at the rename) also ends with status 1. Nothing is left under FILE.h5 (an older
+!> file there stays) and no temporary.
 program fsym_itp_run
     use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
     use fsym_kinds, only: wp, ik
     use fsym_itp, only: fsym_itp_t
     use fsym_itp_problems, only: fsym_itp_problem
-    use fsym_h5, only: h5_file_t, fsym_h5md_header
+    use fsym_h5, only: h5_file_t, fsym_h5md_header, fsym_check_writable, fsym_exit_failure
     implicit none
     type(fsym_itp_t) :: p
     type(h5_file_t) :: f
@@ -34,27 +40,43 @@ program fsym_itp_run
         write (error_unit, '(a)') 'usage: fsym_itp_run PROBLEM METHOD TAU TEND FILE.h5 [NSTATES]'
         stop 2
     end if
+    ! every argument is checked and the output path tried before any work; a refused run
+    ! leaves nothing under FILE.h5 (and no temporary)
     call get_command_argument(1, prob)
     call get_command_argument(2, meth)
     call get_command_argument(3, arg)
-    read (arg, *) tau
+    read (arg, *, iostat=st) tau
+    if (st /= 0) call die('TAU is not a number: '//trim(arg))
     call get_command_argument(4, arg)
-    read (arg, *) tend
+    read (arg, *, iostat=st) tend
+    if (st /= 0) call die('TEND is not a number: '//trim(arg))
     call get_command_argument(5, path)
     ns = 1
     if (command_argument_count() >= 6) then
         call get_command_argument(6, arg)
-        read (arg, *) ns
+        read (arg, *, iostat=st) ns
+        if (st /= 0) call die('NSTATES is not an integer: '//trim(arg))
     end if
+    select case (trim(prob))
+    case ('ho3d', 'pt1d', 'gp3d')
+    case default
+        call die('unknown problem "'//trim(prob)//'" (known: ho3d pt1d gp3d)')
+    end select
+    msg = ''
+    call fsym_check_writable(trim(path), st, msg)
+    if (st /= 0) call die(msg)
     call fsym_itp_problem(trim(prob), n, side, v, dv, psi0, g, exact)
     d = size(n)
-    msg = ''
     call p%init(n, [(side, j=1, d)], v, trim(meth), tau, st, msg, dv=dv, g=g, nstates=ns)
     if (st /= 0) call die(msg)
     do s = 1, ns
         call p%set_state(s, psi0 * p%grid%x(:, 1)**(s - 1), st, msg)
         if (st /= 0) call die(msg)
     end do
+    ! tau is finite and > 0 here (init refuses it otherwise); NaN fails the test as well
+    if (.not. (tend / tau >= 0.5_wp .and. tend / tau < 1.0e9_wp)) then
+        call die('TEND/TAU must give 1 to 10^9 steps (TEND >= TAU, both finite)')
+    end if
     nsteps = nint(tend / tau)
     allocate (eh(ns, nsteps), en(ns, nsteps), t(nsteps), stepno(nsteps), psi(p%grid%npts))
     do i = 1, nsteps
@@ -130,10 +152,11 @@ contains
         s = achar(iachar('0') + d)
     end function dimtext
 
+    !> The message on standard error and exit status 1 (`fsym_exit_failure`); the HDF5 file's
+    !> temporary is removed before (`f%abort`).
     subroutine die(text)
         character(len=*), intent(in) :: text
-        write (error_unit, '(a)') trim(text)
-        stop 1
+        call fsym_exit_failure('fsym_itp_run', trim(text))
     end subroutine die
 
 end program fsym_itp_run
