@@ -237,7 +237,8 @@ contains
     subroutine problem(name)
         character(len=*), intent(in) :: name
         real(wp) :: taus(maxpts), errs(maxpts), errn(maxpts), sgn(maxpts), tpp(nmeth)
-        real(wp) :: spread(nmeth), tau, tol_stop_n
+        real(wp) :: spread(nmeth), tau, tol_stop_n, eabs, e_gp
+        logical :: res_r(ntol, nmeth, 3)
         real(wp) :: res_fft(ntol, nmeth, 3), res_sec(ntol, nmeth, 3), res_steps(nmeth, 2)
         logical :: res_x(ntol, nmeth, 3)
         integer(ik) :: nffts(maxpts), budget, budget_n
@@ -250,6 +251,11 @@ contains
         integer :: st
 
         call setup(name, n, box, v, dv, psi0, g, exact, tend)
+        eabs = abs(exact)   ! the norm-decay energy's limit: E0, for gp3d mu
+        if (name == 'gp3d') then
+            call reference_gp(e_gp, eabs)
+            eabs = abs(eabs)
+        end if
         call timing(name, tpp, spread)
         budget = 20000_ik   ! FFTs of one run
         if (size(n) == 1) budget = 1000000_ik
@@ -305,7 +311,13 @@ contains
                     end if
                 end if
                 if (npn == 0) then   ! the same rule for the norm-decay energy
-                    if (errn(np) < 1.0e-13_wp) then
+                    if (errn(np) < floor_n(tau, eabs)) then
+                        ! at the rounding floor of e_norm: this point is noise, not kept
+                        npn = np - 1
+                        write (output_unit, '(5a,es10.3,a)') '# problem=', name, ' method=', &
+                            trim(meths(m)), ': norm sweep stopped at tau=', tau, &
+                            ', error below the rounding floor 10 eps/(tau |E|)'
+                    else if (errn(np) < 1.0e-13_wp) then
                         npn = np
                     else if (errn(np) < tol_stop_n .and. &
                              count(errn(1:np) < 1.0e-2_wp) >= 3) then
@@ -320,49 +332,58 @@ contains
             end do
             if (nph == 0) nph = np
             if (npn == 0) npn = np
+            npn = max(npn, 1)
             call probe%init(n, box, v, trim(meths(m)), 0.1_wp, st, dv=dv, g=g)
             fps = probe%fft_per_step
             call probe%destroy()
             call analyse(name, m, 1, taus(1:nph), errs(1:nph), extrap, fps, tpp(m), &
-                         spread(m), tend, res_fft(:, m, 1), res_sec(:, m, 1), &
-                         res_steps(m, 1), res_x(:, m, 1))
+                         spread(m), tend, eabs, res_fft(:, m, 1), res_sec(:, m, 1), &
+                         res_steps(m, 1), res_x(:, m, 1), res_r(:, m, 1))
             call analyse(name, m, 2, taus(1:npn), errn(1:npn), extrap_n, fps, tpp(m), &
-                         spread(m), tend, res_fft(:, m, 2), res_sec(:, m, 2), &
-                         res_steps(m, 2), res_x(:, m, 2))
+                         spread(m), tend, eabs, res_fft(:, m, 2), res_sec(:, m, 2), &
+                         res_steps(m, 2), res_x(:, m, 2), res_r(:, m, 2))
             flush (output_unit)
         end do
-        call summary(name, 1, res_fft(:, :, 1), res_sec(:, :, 1), res_x(:, :, 1))
-        call summary(name, 2, res_fft(:, :, 2), res_sec(:, :, 2), res_x(:, :, 2))
-        ! each method with the better of its two estimators (per tolerance): for CN that is
-        ! the norm-decay energy, for the others <H>
+        call summary(name, 1, res_fft(:, :, 1), res_sec(:, :, 1), res_x(:, :, 1), &
+                     res_r(:, :, 1))
+        call summary(name, 2, res_fft(:, :, 2), res_sec(:, :, 2), res_x(:, :, 2), &
+                     res_r(:, :, 2))
+        ! each method with the better of its two estimators (per tolerance; a norm value
+        ! below the rounding floor does not count): for CN on the linear problems that is the
+        ! norm-decay energy, for the others <H>
         do m = 1, nmeth
             do k = 1, ntol
-                if (res_fft(k, m, 2) < res_fft(k, m, 1)) then
+                if (res_fft(k, m, 2) < res_fft(k, m, 1) .and. .not. res_r(k, m, 2)) then
                     res_fft(k, m, 3) = res_fft(k, m, 2)
                     res_sec(k, m, 3) = res_sec(k, m, 2)
                     res_x(k, m, 3) = res_x(k, m, 2)
+                    res_r(k, m, 3) = res_r(k, m, 2)
                 else
                     res_fft(k, m, 3) = res_fft(k, m, 1)
                     res_sec(k, m, 3) = res_sec(k, m, 1)
                     res_x(k, m, 3) = res_x(k, m, 1)
+                    res_r(k, m, 3) = res_r(k, m, 1)
                 end if
             end do
         end do
-        call summary(name, 3, res_fft(:, :, 3), res_sec(:, :, 3), res_x(:, :, 3))
+        call summary(name, 3, res_fft(:, :, 3), res_sec(:, :, 3), res_x(:, :, 3), &
+                     res_r(:, :, 3))
         call check(name, 1, res_fft(:, :, 1), res_steps(:, 1), res_x(:, :, 1), tend)
         call check(name, 2, res_fft(:, :, 2), res_steps(:, 2), res_x(:, :, 2), tend)
     end subroutine problem
 
     !> Fitted order, FFTs and seconds to each tolerance of method m from its sweep, for the
     !> estimator `est` (1 <H>: the `itp` line; 2 the norm-decay energy: `itp-norm`).
-    subroutine analyse(name, m, est, taus, errs, extrap_in, fps, tpp, spread, tend, res_fft, &
-                       res_sec, res_steps, res_x)
+    !> `res_r`: the norm-decay energy would need a step at which its rounding floor
+    !> (`floor_n`) is above the tolerance: not reachable in double precision.
+    subroutine analyse(name, m, est, taus, errs, extrap_in, fps, tpp, spread, tend, eabs, &
+                       res_fft, res_sec, res_steps, res_x, res_r)
         character(len=*), intent(in) :: name
         integer, intent(in) :: m, est, fps
-        real(wp), intent(in) :: taus(:), errs(:), tpp, spread, tend
+        real(wp), intent(in) :: taus(:), errs(:), tpp, spread, tend, eabs
         logical, intent(in) :: extrap_in
         real(wp), intent(out) :: res_fft(ntol), res_sec(ntol), res_steps
-        logical, intent(out) :: res_x(ntol)
+        logical, intent(out) :: res_x(ntol), res_r(ntol)
         real(wp) :: x(maxpts), y(maxpts), order, steps, order_all
         integer :: i, nfit, np, it
         logical :: extrap, stay
@@ -373,6 +394,7 @@ contains
         res_sec(:) = huge(1.0_wp)
         res_steps = 1.0_wp
         res_x(:) = .true.
+        res_r(:) = .false.
         if (np == 0) return
         ! fitted order: points with 1e-13 < err < 1e-2
         nfit = 0
@@ -412,14 +434,22 @@ contains
         res_sec(1) = steps * tpp
         res_steps = steps
         res_x(1) = extrap
+        if (est == 2) res_r(1) = floor_n(tend / steps, eabs) > tols(1)
         do it = 2, ntol   ! tighter tolerances, # lines
             steps = steps_at(tols(it), taus, errs, order, tend, extrap, stay)
             res_fft(it) = steps * fps
             res_sec(it) = steps * tpp
             res_x(it) = extrap
+            if (est == 2) res_r(it) = floor_n(tend / steps, eabs) > tols(it)
             write (output_unit, '(7a,es8.1,a,i0,a,es10.3,a,l1)') '# tol', trim(sfx), &
                 ' problem=', name, ' method=', trim(meths(m)), ' tol=', tols(it), ' ffts=', &
                 nint(steps * fps, int64), ' seconds=', steps * tpp, ' extrapolated=', extrap
+        end do
+        do it = 1, ntol
+            if (res_r(it)) write (output_unit, '(5a,es8.1,a)') '# problem=', name, &
+                ' method=', trim(meths(m)), ': norm value at ', tols(it), &
+                ' needs a step where the rounding floor of e_norm is above it'// &
+                ' (not reachable in double precision)'
         end do
     end subroutine analyse
 
@@ -427,11 +457,11 @@ contains
     !> forward method (order >= 4) by FFTs and by time, at each tolerance (`# summary`,
     !> `# summary-norm` for the norm-decay energy, `# summary-best` each method with the
     !> better of its two estimators).
-    subroutine summary(name, est, res_fft, res_sec, res_x)
+    subroutine summary(name, est, res_fft, res_sec, res_x, res_r)
         character(len=*), intent(in) :: name
         integer, intent(in) :: est
         real(wp), intent(in) :: res_fft(ntol, nmeth), res_sec(ntol, nmeth)
-        logical, intent(in) :: res_x(ntol, nmeth)
+        logical, intent(in) :: res_x(ntol, nmeth), res_r(ntol, nmeth)
         logical :: base(nmeth), fwd(nmeth)
         integer :: it, i, k, ib, m
         base = [(any(meths(m) == ['Strang', 'TVT   ']), m = 1, nmeth)]
@@ -451,6 +481,10 @@ contains
                 res_sec(it, 1) / res_sec(it, k), ' extrapolated=', &
                 res_x(it, i) .or. res_x(it, ib) .or. res_x(it, k), ' cn_extrapolated=', &
                 res_x(it, 1)
+            if (est /= 1 .and. any(res_r(it, :))) write (output_unit, '(5a,es8.1,a,3l1)') &
+                '# summary', trim(suffix(est)), ' problem=', name, ' tol=', tols(it), &
+                ' below the rounding floor of e_norm (strang, best, cn): ', &
+                res_r(it, ib), res_r(it, i) .or. res_r(it, k), res_r(it, 1)
         end do
     end subroutine summary
 
@@ -496,6 +530,15 @@ contains
             suffix = '-best'
         end select
     end function suffix
+
+    !> Rounding floor of the relative error of the norm-decay energy at step tau:
+    !> e_norm = -ln(norm)/tau takes the rounding of ln(norm) (a few eps) divided by tau;
+    !> 10 eps/(tau |E|) with a margin (measured on pt1d: the error stops falling near
+    !> 0.3 eps/(tau |E|)).
+    pure real(wp) function floor_n(tau, eabs)
+        real(wp), intent(in) :: tau, eabs
+        floor_n = 10.0_wp * epsilon(1.0_wp) / (tau * eabs)
+    end function floor_n
 
     !> Least-squares slope of y against x (0 for fewer than two points).
     pure real(wp) function slope(x, y) result(order)
