@@ -533,8 +533,8 @@ contains
 
     !> Rounding floor of the relative error of the norm-decay energy at step tau:
     !> e_norm = -ln(norm)/tau takes the rounding of ln(norm) (a few eps) divided by tau;
-    !> 10 eps/(tau |E|) with a margin (measured on pt1d: the error stops falling near
-    !> 0.3 eps/(tau |E|)).
+    !> 10 eps/(tau |E|) with a margin (measured on pt1d: CN's error stops falling near
+    !> 0.4 eps/(tau |E|)).
     pure real(wp) function floor_n(tau, eabs)
         real(wp), intent(in) :: tau, eabs
         floor_n = 10.0_wp * epsilon(1.0_wp) / (tau * eabs)
