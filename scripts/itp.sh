@@ -1,17 +1,20 @@
 #!/usr/bin/env bash
 # Imaginary-time benchmark (issue 26): builds the optional library fsym_itp (FFTW 3, GPL-2+)
 # and its benchmark in build/itp-release (-O3 -march=native -ffp-contract=off) and runs it.
-#   bash scripts/itp.sh --quick        about two minutes: sweeps capped (20000 FFTs of a 3-D
-#                                      run) and stopped at 1e-10, values beyond extrapolated (a #
-#                                      line says so); output itp_bench_quick.txt, itp_quick.png
+#   bash scripts/itp.sh --quick        about three minutes: sweeps capped (20000 FFTs
+#                                      of a 3-D run; norm-decay energy 10000) and stopped at
+#                                      1e-10 (norm-decay energy 1e-9), values beyond
+#                                      extrapolated (a # line says so); output
+#                                      itp_bench_quick.txt, itp_quick.png
 #   bash scripts/itp.sh [problem ...]  full sweeps (ho3d pt1d gp3d) to 1e-12; with all three
 #                                      problems it draws doc/figures/itp.png
 # Prints, per problem and method, `itp problem=NAME method=M order=P ffts_to_1e-8=N
-# seconds_to_1e-8=S` and # lines with the sweeps, timing spreads and the CPU (all kept in
-# build/itp-release/itp_bench.txt). When every problem ran, it then writes the GP ground state
-# (fsym_itp_run, method A, tau = 0.1) to build/itp-release/gp3d.h5 and, with h5py and
-# matplotlib, the figure (scripts/plot_itp.py): <H> error against FFTs per method and
-# problem, and the GP ground-state density.
+# seconds_to_1e-8=S` (<H>), the same with `itp-norm` (the norm-decay energy), and # lines
+# with the sweeps, timing spreads and the CPU (all kept in build/itp-release/itp_bench.txt).
+# When every problem ran, it then writes the GP ground state (fsym_itp_run, method A,
+# tau = 0.1) to build/itp-release/gp3d.h5 and, with h5py and matplotlib, the figure
+# (scripts/plot_itp.py): <H> error against FFTs per method and problem, and the GP
+# ground-state density.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export FSYM_PLOTS=1
