@@ -19,7 +19,9 @@
 !>        error linear in the mass ratio eps then scales as mscale, the eps^2 part as mscale^2,
 !>        which `bash scripts/planets.sh --eps-split` uses to separate them)
 !>        fsym-planets-bench --orders   (fitted eps and h exponents of every table, lines
-!>                                       `orders METHOD order=N p=P q=Q`, as test_planets)
+!>                                       `orders METHOD order=N p=P q=Q`, as test_planets;
+!>                                       `# quadrature` lines: the kicks' quadrature order
+!>                                       and moment error; `# scan SRKN6b` lines)
 program fsym_planets_bench
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
     use fsym
@@ -252,9 +254,11 @@ contains
 
     !> The fitted exponents of every table (see `fit_eps_exponents`).
     subroutine print_orders()
+        integer, parameter :: scan_nper(5) = [12, 16, 20, 30, 40]
+        real(wp), parameter :: scan_eps(3) = [1.0e-3_wp, 1.0e-2_wp, 3.0e-2_wp]
         type(scheme_t) :: s, sref
         real(wp) :: p, pq
-        integer :: i, st
+        integer :: i, k, st
         names = fsym_catalogue()
         call fsym_scheme_by_name('SRKN6b', sref)
         do i = 1, size(names)
@@ -264,7 +268,46 @@ contains
             write (output_unit, '(a,a,a,i0,a,f6.3,a,f6.3)') 'orders ', trim(names(i)), &
                 ' order=', s%order, ' p=', p, ' q=', pq
         end do
+        ! the eps-linear error is the error of the kicks' quadrature along the Kepler flow
+        do i = 1, size(names)
+            call fsym_scheme_by_name(trim(names(i)), s)
+            call print_quadrature(s)
+        end do
+        ! SRKN6b's tiny quadrature error: its fit over steps and mass ratios
+        call fsym_scheme_by_name('SRKN6b', s)
+        do i = 1, size(scan_nper)
+            do k = 1, size(scan_eps)
+                call fit_eps_exponents(s, sref, p, pq, st, nper=scan_nper(i), eps=scan_eps(k))
+                if (st /= 0) call fail('a run of SRKN6b failed')
+                write (output_unit, '(a,i0,a,es8.1,a,f7.3,a,f7.3)') '# scan SRKN6b nper=', &
+                    scan_nper(i), ' eps=', scan_eps(k), ' p=', p, ' q=', pq
+            end do
+        end do
     end subroutine print_orders
+
+    !> The quadrature of a table's kicks along the drift (nodes: the summed drift weights before
+    !> each kick; weights: the kick weights): its order K (the first moment that is not exact)
+    !> and the error of that moment, sum b_i t_i^K - 1/(K + 1). To first order in eps a Kepler-
+    !> drift step integrates the interaction along the Kepler flow by this rule, so K is the
+    !> h exponent p of the eps-linear error and the moment error its size.
+    subroutine print_quadrature(s)
+        type(scheme_t), intent(in) :: s
+        real(wp) :: t, err
+        integer :: kk, jj
+        do kk = 0, 12
+            t = 0.0_wp; err = -1.0_wp / real(kk + 1, wp)
+            do jj = 1, s%nop
+                if (s%op(jj) == OP_DRIFT) then
+                    t = t + s%c(jj)
+                else
+                    err = err + s%c(jj) * t**kk
+                end if
+            end do
+            if (abs(err) > 1.0e-12_wp) exit
+        end do
+        write (output_unit, '(a,a,a,i0,a,es10.3)') '# quadrature ', trim(s%name), ' order=', kk, &
+            ' moment_error=', err
+    end subroutine print_quadrature
 
     !> The integrator of method i, set up afresh (the one kernel with the model's drift).
     subroutine init_method(i)
