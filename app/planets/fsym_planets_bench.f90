@@ -26,7 +26,7 @@ program fsym_planets_bench
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
     use fsym
     use fsym_solar_data, only: solar_data_t, read_solar_data
-    use fsym_planets_fit, only: evaluations_per_step, fit_eps_exponents
+    use fsym_planets_fit, only: evaluations_per_step, fit_eps_exponents, kick_quadrature
     implicit none
     character(len=512) :: path, arg
     character(len=256) :: msg
@@ -285,26 +285,12 @@ contains
         end do
     end subroutine print_orders
 
-    !> The quadrature of a table's kicks along the drift (nodes: the summed drift weights before
-    !> each kick; weights: the kick weights): its order K (the first moment that is not exact)
-    !> and the error of that moment, sum b_i t_i^K - 1/(K + 1). To first order in eps a Kepler-
-    !> drift step integrates the interaction along the Kepler flow by this rule, so K is the
-    !> h exponent p of the eps-linear error and the moment error its size.
+    !> One `# quadrature` line: the order and moment error of a table's kick quadrature.
     subroutine print_quadrature(s)
         type(scheme_t), intent(in) :: s
-        real(wp) :: t, err
-        integer :: kk, jj
-        do kk = 0, 12
-            t = 0.0_wp; err = -1.0_wp / real(kk + 1, wp)
-            do jj = 1, s%nop
-                if (s%op(jj) == OP_DRIFT) then
-                    t = t + s%c(jj)
-                else
-                    err = err + s%c(jj) * t**kk
-                end if
-            end do
-            if (abs(err) > 1.0e-12_wp) exit
-        end do
+        real(wp) :: err
+        integer :: kk
+        call kick_quadrature(s, kk, err)
         write (output_unit, '(a,a,a,i0,a,es10.3)') '# quadrature ', trim(s%name), ' order=', kk, &
             ' moment_error=', err
     end subroutine print_quadrature

@@ -5,11 +5,12 @@ module fsym_planets_fit
     use fsym_kinds, only: wp, ik
     use fsym_integrator, only: integrator_t
     use fsym_scheme, only: scheme_t
+    use fsym_kernel, only: OP_DRIFT
     use fsym_planets, only: planets_model_t, PLANETS_JACOBI
     implicit none
     private
 
-    public :: evaluations_per_step, fit_eps_exponents
+    public :: evaluations_per_step, fit_eps_exponents, kick_quadrature
 
     real(wp), parameter :: TWO_PI = 6.28318530717958647692528676655900577_wp
 
@@ -21,6 +22,30 @@ contains
         type(scheme_t), intent(in) :: scheme   !! stage table
         evaluations_per_step = scheme%nforce + scheme%ngrad
     end function evaluations_per_step
+
+    !> The quadrature of a table's kicks along the drift (nodes: the summed drift weights before
+    !> each kick; weights: the kick weights): its order K (the first moment that is not exact,
+    !> to 1e-12; at most 13) and the error of that moment, sum b_i t_i^K - 1/(K + 1). To first
+    !> order in eps a Kepler-drift step integrates the interaction along the Kepler flow by this
+    !> rule, so K is the h exponent of the eps-linear error and the moment error its size.
+    pure subroutine kick_quadrature(scheme, order, moment_error)
+        type(scheme_t), intent(in) :: scheme   !! stage table
+        integer, intent(out) :: order          !! the rule's order K
+        real(wp), intent(out) :: moment_error  !! sum b_i t_i^K - 1/(K + 1)
+        real(wp) :: t
+        integer :: j
+        do order = 0, 12
+            t = 0.0_wp; moment_error = -1.0_wp / real(order + 1, wp)
+            do j = 1, scheme%nop
+                if (scheme%op(j) == OP_DRIFT) then
+                    t = t + scheme%c(j)
+                else
+                    moment_error = moment_error + scheme%c(j) * t**order
+                end if
+            end do
+            if (abs(moment_error) > 1.0e-12_wp) return
+        end do
+    end subroutine kick_quadrature
 
     !> Fitted exponents p, q of err = eps a(h) + eps^2 b(h), a ~ h^p, b ~ h^q, on two planets
     !> (Jacobi; masses eps and eps/2 at a = 1 and 2.5, 4 inner periods): with e(eps) the
