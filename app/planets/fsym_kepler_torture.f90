@@ -6,6 +6,7 @@
 !> when a draw fails, returns NaN, or an error exceeds the tolerance (default 1e-13;
 !> scripts/kepler_torture.sh passes 5e-11, see doc/planets.md).
 program fsym_kepler_torture
+    use, intrinsic :: iso_fortran_env, only: error_unit
     use fsym_kinds, only: wp
     use fsym_kepler_check, only: kepler_check_t, kepler_check_draws, KC_CLASSES, KC_CLASS_NAMES
     implicit none
@@ -13,20 +14,24 @@ program fsym_kepler_torture
     integer :: ndraw, seed, k
     real(wp) :: tol, worst
     character(len=64) :: arg
+    integer :: ios
     ndraw = 1000000
     seed = 20070418
     tol = 1.0e-13_wp
     if (command_argument_count() >= 1) then
         call get_command_argument(1, arg)
-        read (arg, *) ndraw
+        read (arg, *, iostat=ios) ndraw
+        if (ios /= 0) call bad_argument(1, arg)
     end if
     if (command_argument_count() >= 2) then
         call get_command_argument(2, arg)
-        read (arg, *) seed
+        read (arg, *, iostat=ios) seed
+        if (ios /= 0) call bad_argument(2, arg)
     end if
     if (command_argument_count() >= 3) then
         call get_command_argument(3, arg)
-        read (arg, *) tol
+        read (arg, *, iostat=ios) tol
+        if (ios /= 0) call bad_argument(3, arg)
     end if
     call kepler_check_draws(ndraw, seed, res)
     write (*, '(a14,3a9,5a11)') 'class', 'draws', 'fail', 'nan', 'energy', 'angmom', 'lrl', &
@@ -40,4 +45,15 @@ program fsym_kepler_torture
         ' failures=', sum(res%failures), ' nan=', sum(res%nans), ' worst=', worst, ' tol=', tol, &
         merge('PASS', 'FAIL', sum(res%failures) + sum(res%nans) == 0 .and. worst <= tol)
     if (sum(res%failures) + sum(res%nans) /= 0 .or. worst > tol) error stop 1
+contains
+
+    !> A command-line argument that does not read: a message and exit status 2.
+    subroutine bad_argument(position, text)
+        integer, intent(in) :: position
+        character(len=*), intent(in) :: text
+        write (error_unit, '(a,i0,a)') 'fsym-kepler-torture: argument ', position, &
+            ' does not read: '//trim(text)
+        error stop 2
+    end subroutine bad_argument
+
 end program fsym_kepler_torture
