@@ -33,8 +33,8 @@ set(FSYM_APP_PLANETS_H5_MODULES)
 set(FSYM_APP_PLANETS_PROGRAMS planets/fsym_planets_bench.f90 planets/fsym_planets_race.f90
     planets/fsym_kepler_torture.f90)
 
-# io: HDF5/H5MD output and the HDF5 checkpoint files
-set(FSYM_APP_IO_MODULES)
+# io: how a program ends on a failure (no HDF5), HDF5/H5MD output and the HDF5 checkpoint files
+set(FSYM_APP_IO_MODULES io/fsym_exit.f90)
 set(FSYM_APP_IO_H5_MODULES io/fsym_h5.f90 io/fsym_checkpoint_h5.f90)
 set(FSYM_APP_IO_PROGRAMS)
 

@@ -11,7 +11,8 @@
 !>   checkpoints 0, 1e3, 1e4, ...; `steps NSTEPS` the same run without checkpoints (for
 !>   valgrind heap counts: run it with two different NSTEPS, compare the allocations).
 program fsym_bench
-    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
+    use, intrinsic :: iso_fortran_env, only: output_unit, int64
+    use fsym_exit, only: fsym_exit_failure
     use fsym
     use fsym_bench_models, only: user_kepler_t
     use fsym_bench_ratios, only: bench_ratios
@@ -29,10 +30,8 @@ program fsym_bench
     if (command_argument_count() >= 2) then
         call get_command_argument(2, arg)
         read (arg, *, iostat=ios) nmem
-        if (ios /= 0) then
-            write (error_unit, '(a)') 'fsym-bench: the second argument does not read: '//trim(arg)
-            error stop 2
-        end if
+        if (ios /= 0) call fsym_exit_failure('fsym-bench', &
+                                             'the second argument does not read: '//trim(arg), 2)
     end if
     select case (trim(what))
     case ('ratios')

@@ -18,6 +18,7 @@ module fsym_h5
     use h5lt
     use fsym_kinds, only: wp, ik
     use fsym_status, only: FSYM_SUCCESS, FSYM_ERR_IO, fsym_report
+    use fsym_exit, only: fsym_exit_failure   ! re-exported: the programs' end on a failure
     implicit none
     private
 
@@ -63,11 +64,6 @@ module fsym_h5
             character(kind=c_char), intent(in) :: name(*)
             integer(c_int) :: r
         end function c_remove
-        subroutine c_exit_now(code) bind(C, name='_exit')
-            import :: c_int
-            implicit none
-            integer(c_int), value :: code
-        end subroutine c_exit_now
         function c_getpid() bind(C, name='getpid') result(r)
             import :: c_int
             implicit none
@@ -119,24 +115,6 @@ contains
         self%failed = .true.
         if (.not. allocated(self%first_error)) self%first_error = trim(msg)
     end subroutine keep_error
-
-    !> End a program that failed: the message on standard error, both standard units flushed
-    !> (a buffered standard error that is a file would otherwise lose it), then exit status 1
-    !> at once (`_exit`), without the exit handlers: after a write failed on a full disk,
-    !> HDF5's own handler flushes the failed file again and crashes (SIGSEGV at exit, HDF5
-    !> 1.10). Temporaries must be removed before (every writer here does on failure).
-    subroutine fsym_exit_failure(program, text)
-        use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
-        character(len=*), intent(in) :: program     !! program name
-        character(len=*), intent(in) :: text        !! the message
-        integer :: ios1, ios2, ios3
-        ! each may fail on a full disk; nothing more can be done then, the exit status says it
-        write (error_unit, '(a)', iostat=ios1) program//': '//trim(text)
-        flush (output_unit, iostat=ios2)
-        flush (error_unit, iostat=ios3)
-        if (ios1 /= 0 .or. ios2 /= 0 .or. ios3 /= 0) continue
-        call c_exit_now(1_c_int)
-    end subroutine fsym_exit_failure
 
     !> Remove a file if it exists (no error when it does not).
     subroutine fsym_remove_file(path)

@@ -6,7 +6,7 @@
 !> when a draw fails, returns NaN, or an error exceeds the tolerance (default 1e-13;
 !> scripts/kepler_torture.sh passes 5e-11, see doc/planets.md).
 program fsym_kepler_torture
-    use, intrinsic :: iso_fortran_env, only: error_unit
+    use fsym_exit, only: fsym_exit_failure
     use fsym_kinds, only: wp
     use fsym_kepler_check, only: kepler_check_t, kepler_check_draws, KC_CLASSES, KC_CLASS_NAMES
     implicit none
@@ -51,9 +51,10 @@ contains
     subroutine bad_argument(position, text)
         integer, intent(in) :: position
         character(len=*), intent(in) :: text
-        write (error_unit, '(a,i0,a)') 'fsym-kepler-torture: argument ', position, &
-            ' does not read: '//trim(text)
-        error stop 2
+        character(len=12) :: pos
+        write (pos, '(i0)') position
+        call fsym_exit_failure('fsym-kepler-torture', 'argument '//trim(pos)// &
+                               ' does not read: '//trim(text), 2)
     end subroutine bad_argument
 
 end program fsym_kepler_torture

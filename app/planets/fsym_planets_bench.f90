@@ -23,9 +23,10 @@
 !>                                       `# quadrature` lines: the kicks' quadrature order
 !>                                       and moment error; `# scan SRKN6b` lines)
 program fsym_planets_bench
-    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
+    use, intrinsic :: iso_fortran_env, only: output_unit, int64
     use fsym
     use fsym_solar_data, only: solar_data_t, read_solar_data
+    use fsym_exit, only: fsym_exit_failure
     use fsym_planets_fit, only: evaluations_per_step, fit_eps_exponents, kick_quadrature
     implicit none
     character(len=512) :: path, arg
@@ -342,8 +343,7 @@ contains
 
     subroutine fail(text)
         character(len=*), intent(in) :: text
-        write (error_unit, '(a)') 'fsym-planets-bench: '//trim(text)
-        error stop 1
+        call fsym_exit_failure('fsym-planets-bench', text)
     end subroutine fail
 
 end program fsym_planets_bench

@@ -14,8 +14,9 @@
 !>
 !> Usage: fsym-planets race state=FILE system=S method=M h=H nsteps=N samples=S
 program fsym_planets_race
-    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, int64
+    use, intrinsic :: iso_fortran_env, only: output_unit, int64
     use fsym
+    use fsym_exit, only: fsym_exit_failure
     use fsym_solar_data, only: solar_data_t, read_solar_data
     implicit none
     character(len=512) :: arg, state, system, method
@@ -176,8 +177,7 @@ contains
 
     subroutine fail(text)
         character(len=*), intent(in) :: text
-        write (error_unit, '(a)') 'fsym-planets: '//trim(text)
-        error stop 1
+        call fsym_exit_failure('fsym-planets', text)
     end subroutine fail
 
 end program fsym_planets_race

@@ -10,12 +10,12 @@
 !> method at 0.5 us per step); --nmax: largest steps per period tried for the extreme orbits
 !> (default 524288).
 program fsym_stability_study
-    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+    use, intrinsic :: iso_fortran_env, only: output_unit
     use fsym
     use fsym_linear_stability
     use fsym_fpu
     use fsym_stability_runs
-    use fsym_h5, only: h5_file_t, fsym_check_writable, fsym_h5md_header
+    use fsym_h5, only: h5_file_t, fsym_check_writable, fsym_h5md_header, fsym_exit_failure
     implicit none
 
     character(len=FSYM_NAME_LEN), allocatable :: names(:)
@@ -79,8 +79,7 @@ contains
 
     subroutine die(text)
         character(len=*), intent(in) :: text
-        write (error_unit, '(a)') 'fsym-stability: '//trim(text)
-        error stop 1
+        call fsym_exit_failure('fsym-stability', text)
     end subroutine die
 
     subroutine parse_arguments()
