@@ -4,8 +4,7 @@
 module fsym_planets_fit
     use fsym_kinds, only: wp, ik
     use fsym_integrator, only: integrator_t
-    use fsym_scheme, only: scheme_t
-    use fsym_kernel, only: OP_DRIFT
+    use fsym_scheme, only: scheme_t, OP_DRIFT
     use fsym_planets, only: planets_model_t, PLANETS_JACOBI
     implicit none
     private
